@@ -1,0 +1,69 @@
+#include "mesh/export.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/io_util.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+
+#include <stdexcept>
+
+namespace dynrad {
+namespace {
+
+using OutMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+}  // namespace
+
+void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,
+                            const VertexValues& values, const WriteOptions& options) {
+  const std::string ext = detail::extension_of(path);
+  if (ext != ".ply" && ext != ".off")
+    throw OutputError(path, "unsupported output type '" + ext + "'; use .ply or .off.");
+  const std::size_t n = split.size();
+  if (values.linear.size() != n || values.display.size() != n || values.quality.size() != n)
+    throw std::logic_error("write_mesh_with_values: value arrays do not match the vertex split");
+
+  // A plain float mesh whose vertices are the split output vertices.
+  OutMesh out;
+  out.request_vertex_colors();
+  out.reserve(n, 0, scene.face_count());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& p = scene.mesh().point(split.source[i]);
+    auto v = out.add_vertex(OutMesh::Point(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])));
+    out.set_color(v, OutMesh::Color(values.display[i][0], values.display[i][1], values.display[i][2]));
+  }
+  for (auto f : scene.mesh().faces()) {
+    const auto* c = &split.corner[3 * f.idx()];
+    auto added = out.add_face(OpenMesh::VertexHandle(static_cast<int>(c[0])), OpenMesh::VertexHandle(static_cast<int>(c[1])),
+                              OpenMesh::VertexHandle(static_cast<int>(c[2])));
+    if (!added.is_valid()) throw std::logic_error("write_mesh_with_values: output face rejected by OpenMesh");
+  }
+
+  OpenMesh::IO::Options io = OpenMesh::IO::Options::VertexColor;
+  OpenMesh::VPropHandleT<float> channel[3];
+  OpenMesh::VPropHandleT<float> quality;
+  if (ext == ".ply") {
+    const char* suffix[3] = {"_r", "_g", "_b"};
+    for (int c = 0; c < 3; ++c) {
+      out.add_property(channel[c], values.name + suffix[c]);
+      out.property(channel[c]).set_persistent(true);
+    }
+    out.add_property(quality, "quality");
+    out.property(quality).set_persistent(true);
+    for (std::size_t i = 0; i < n; ++i) {
+      OpenMesh::VertexHandle v(static_cast<int>(i));
+      for (int c = 0; c < 3; ++c) out.property(channel[c], v) = static_cast<float>(values.linear[i][c]);
+      out.property(quality, v) = values.quality[i];
+    }
+    io += OpenMesh::IO::Options::Custom;
+    if (!options.ascii) io += OpenMesh::IO::Options::Binary;
+  }
+
+  AtomicFile file(path);
+  if (!OpenMesh::IO::write_mesh(out, file.stream(), ext, io, 9))
+    throw OutputError(path, "OpenMesh could not write the mesh.");
+  file.commit();
+}
+
+}  // namespace dynrad

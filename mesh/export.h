@@ -1,0 +1,34 @@
+// Writing a mesh with per-vertex values: PLY (binary by default) or OFF (COFF).
+//
+// PLY vertex properties, in order: float x y z; uchar red green blue (display colour,
+// the only colour MeshLab reads); float <name>_r <name>_g <name>_b (linear values);
+// float quality (MeshLab's per-vertex scalar). OFF carries positions and the uchar
+// colours only. The format follows the extension.
+#pragma once
+
+#include "mesh/vertex_split.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dynrad {
+
+struct VertexValues {
+  std::string name = "radiosity";  // prefix of the three linear float properties
+  std::vector<Rgb> linear;
+  std::vector<std::array<std::uint8_t, 3>> display;
+  std::vector<float> quality;
+};
+
+struct WriteOptions {
+  bool ascii = false;  // PLY only; OFF is always ASCII
+};
+
+// Writes atomically (see AtomicFile). Throws OutputError on failure or an unknown
+// extension.
+void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,
+                            const VertexValues& values, const WriteOptions& options = {});
+
+}  // namespace dynrad

@@ -1,0 +1,66 @@
+#include "mesh/import.h"
+
+#include "mesh/error.h"
+#include "mesh/io_util.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace dynrad {
+namespace detail {
+PolygonSoup read_obj(const std::string& path);
+PolygonSoup read_openmesh(const std::string& path);
+}  // namespace detail
+
+PolygonSoup read_model(const std::string& path) {
+  const std::string ext = detail::extension_of(path);
+  if (ext == ".obj") return detail::read_obj(path);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return detail::read_openmesh(path);
+  throw InputError(path, 0,
+                   "unsupported file type '" + ext + "'. dynrad reads .obj (with .mtl), .ply, .off, .stl and "
+                   ".json scene files.");
+}
+
+namespace {
+std::string format_rgb(const Rgb& c) {
+  std::ostringstream out;
+  out << "(" << c.r << ", " << c.g << ", " << c.b << ")";
+  return out.str();
+}
+}  // namespace
+
+void check_material(const Material& m, const std::string& where) {
+  const std::string who = "material '" + m.name + "'" + (m.origin.empty() ? "" : " (" + m.origin + ")");
+  if (!m.reflectance.is_finite() || !m.emission.is_finite())
+    throw InputError(where, 0, who + " has a value that is not a finite number.");
+  if (m.reflectance.max_channel() >= 1.0)
+    throw InputError(where, 0,
+                     who + ": reflectance " + format_rgb(m.reflectance) +
+                         " must be below 1 in every channel, since a surface cannot reflect more light than "
+                         "it receives. Real materials lie between about 0.02 and 0.9.");
+  if (m.reflectance.min_channel() < 0.0)
+    throw InputError(where, 0, who + ": reflectance " + format_rgb(m.reflectance) + " must not be negative.");
+  if (m.emission.min_channel() < 0.0)
+    throw InputError(where, 0, who + ": emission " + format_rgb(m.emission) + " must not be negative.");
+}
+
+PolygonSoup read_input(const std::string& path) {
+  PolygonSoup soup = detail::extension_of(path) == ".json" ? read_scene(path) : read_model(path);
+  if (soup.polygons.empty())
+    throw InputError(path, 0, "contains no faces, so there is nothing to light. Check that the export included geometry.");
+  std::vector<char> used(soup.materials.size(), 0);
+  for (auto m : soup.material) used[m] = 1;
+  for (std::size_t i = 0; i < soup.materials.size(); ++i) {
+    if (!used[i]) continue;
+    const Material& m = soup.materials[i];
+    if (!m.defined)
+      throw InputError(path, 0,
+                       "material '" + m.name + "' is used (" + m.origin +
+                           ") but defined nowhere. Add it to the .mtl file or define it under \"materials\" in "
+                           "a scene file.");
+    check_material(m, path);
+  }
+  return soup;
+}
+
+}  // namespace dynrad

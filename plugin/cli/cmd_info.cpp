@@ -1,0 +1,121 @@
+// `dynrad info FILE`: what dynrad sees in a model after cleanup.
+#include "mesh/load.h"
+#include "plugin/cli/commands.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <memory>
+
+namespace dynrad::cli {
+namespace {
+
+struct InfoOptions {
+  LoadOptions load;
+  bool json = false;
+};
+
+nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
+
+int run_info(const InfoOptions& options) {
+  CleanupOptions cleanup;
+  cleanup.merge_tolerance = options.load.merge_tolerance;
+  LoadedScene scene = load_scene(options.load.input, cleanup);
+  const SceneMesh& mesh = *scene.mesh;
+  const CleanupReport& r = scene.cleanup;
+  const Bounds b = mesh.bounds();
+
+  // Per-material statistics over the cleaned triangles.
+  struct Usage {
+    std::size_t faces = 0;
+    double area = 0;
+  };
+  std::vector<Usage> usage(mesh.materials().size());
+  for (auto f : mesh.mesh().faces()) {
+    usage[mesh.material_id(f)].faces++;
+    usage[mesh.material_id(f)].area += mesh.area(f);
+  }
+  const std::vector<std::pair<const char*, std::size_t>> repairs = {
+      {"merged_points", r.merged_points},
+      {"degenerate_polygons", r.degenerate_polygons},
+      {"t_junctions", r.t_junctions},
+      {"triangulated_polygons", r.triangulated_polygons},
+      {"untriangulatable_polygons", r.untriangulatable_polygons},
+      {"degenerate_triangles", r.degenerate_triangles},
+      {"duplicate_triangles", r.duplicate_triangles},
+      {"non_manifold_edges", r.non_manifold_edges},
+      {"split_vertices", r.split_vertices},
+      {"unused_points", r.unused_points},
+  };
+
+  if (options.json) {
+    nlohmann::json j;
+    j["input"] = options.load.input;
+    j["files"] = scene.input_files;
+    j["input_points"] = r.input_points;
+    j["input_polygons"] = r.input_polygons;
+    j["vertices"] = mesh.vertex_count();
+    j["faces"] = mesh.face_count();
+    j["bounds"] = {{"min", {b.lo[0], b.lo[1], b.lo[2]}}, {"max", {b.hi[0], b.hi[1], b.hi[2]}}};
+    j["total_area"] = mesh.total_area();
+    j["emitting_area"] = mesh.emitting_area();
+    j["emitted_power"] = rgb_json(mesh.emitted_power());
+    for (const auto& [name, count] : repairs) j["repairs"][name] = count;
+    j["repairs"]["total"] = r.repairs();
+    for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
+      const Material& mat = mesh.materials()[m];
+      if (usage[m].faces == 0) continue;
+      j["materials"].push_back({{"name", mat.name},
+                                {"reflectance", rgb_json(mat.reflectance)},
+                                {"emission", rgb_json(mat.emission)},
+                                {"faces", usage[m].faces},
+                                {"area", usage[m].area}});
+    }
+    j["warnings"] = scene.warnings;
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+
+  const Vec3d size = b.extent();
+  const Rgb power = mesh.emitted_power();
+  std::cout << fmt::format("input           {} ({} file{})\n", options.load.input, scene.input_files,
+                           scene.input_files == 1 ? "" : "s");
+  std::cout << fmt::format("read            {} points, {} polygons\n", r.input_points, r.input_polygons);
+  std::cout << fmt::format("mesh            {} vertices, {} triangles\n", mesh.vertex_count(), mesh.face_count());
+  std::cout << fmt::format("bounds          ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}), size {:.6g} x {:.6g} x {:.6g}\n",
+                           b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2], size[0], size[1], size[2]);
+  std::cout << fmt::format("area            {:.6g} total, {:.6g} emitting (model units squared)\n", mesh.total_area(),
+                           mesh.emitting_area());
+  std::cout << fmt::format("emitted power   ({:.6g}, {:.6g}, {:.6g}) (W if the model is in metres)\n", power.r,
+                           power.g, power.b);
+  std::cout << fmt::format("repairs         {}\n", r.repairs());
+  for (const auto& [name, count] : repairs) std::cout << fmt::format("  {:<26}{}\n", name, count);
+  std::cout << "materials\n";
+  for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
+    const Material& mat = mesh.materials()[m];
+    if (usage[m].faces == 0) continue;
+    std::cout << fmt::format("  {:<20} reflectance ({:.3f}, {:.3f}, {:.3f})", mat.name, mat.reflectance.r,
+                             mat.reflectance.g, mat.reflectance.b);
+    if (mat.emits())
+      std::cout << fmt::format("  emission ({:.4g}, {:.4g}, {:.4g}) W/m2", mat.emission.r, mat.emission.g,
+                               mat.emission.b);
+    std::cout << fmt::format("  {} faces, area {:.6g}\n", usage[m].faces, usage[m].area);
+  }
+  if (mesh.emitting_area() == 0) std::cout << "note            no emitting faces: a solve would have no light.\n";
+  for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_info_command(CLI::App& app) {
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* command = app.add_subcommand("info", "Print what dynrad reads from a model: sizes, materials, repairs");
+  add_load_options(*command, options->load);
+  command->add_flag("--json", options->json, "Print the information as JSON");
+  return [options] { return run_info(*options); };
+}
+
+}  // namespace dynrad::cli

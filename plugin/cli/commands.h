@@ -1,0 +1,28 @@
+// Subcommands of the `dynrad` command line. Each registers its options on the app and
+// returns the function that runs it.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace dynrad::cli {
+
+using Command = std::function<int()>;
+
+// Exit codes, also listed in the README.
+constexpr int kExitOk = 0;
+constexpr int kExitInternal = 1;  // a bug: please report it
+constexpr int kExitBadInput = 2;  // unusable input, unwritable output, bad options
+
+Command add_info_command(CLI::App& app);
+Command add_clean_command(CLI::App& app);
+
+// Options every command that loads a scene shares.
+struct LoadOptions {
+  std::string input;
+  double merge_tolerance = 1e-6;
+};
+void add_load_options(CLI::App& command, LoadOptions& options);
+
+}  // namespace dynrad::cli

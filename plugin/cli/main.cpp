@@ -1,0 +1,69 @@
+// dynrad: radiosity lighting for meshes. This file only dispatches subcommands and
+// turns errors into messages and exit codes; the work is in the libraries.
+#include "mesh/error.h"
+#include "plugin/cli/commands.h"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <map>
+
+namespace dynrad::cli {
+
+void add_load_options(CLI::App& command, LoadOptions& options) {
+  command.add_option("input", options.input, "Model (.obj, .ply, .off, .stl) or scene file (.json)")->required();
+  command
+      .add_option("--merge-tolerance", options.merge_tolerance,
+                  "Merge points closer than this fraction of the scene's bounding-box diagonal")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.01));
+}
+
+}  // namespace dynrad::cli
+
+int main(int argc, char** argv) {
+  using namespace dynrad;
+  auto logger = spdlog::stderr_color_mt("dynrad");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%^%l%$: %v");
+
+  CLI::App app{"dynrad: radiosity lighting for meshes (Dynamic Subdivision, Dubuis & Bieri)"};
+  app.set_version_flag("--version", std::string("dynrad ") + DYNRAD_VERSION);
+  app.require_subcommand(1);
+  bool verbose = false;
+  app.add_flag("-v,--verbose", verbose, "Print debug messages");
+  std::map<CLI::App*, cli::Command> commands;
+  {
+    CLI::App* info = nullptr;
+    auto run = cli::add_info_command(app);
+    info = app.get_subcommands({}).back();
+    commands[info] = run;
+    auto run_clean = cli::add_clean_command(app);
+    commands[app.get_subcommands({}).back()] = run_clean;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? cli::kExitOk : cli::kExitBadInput;
+  }
+  if (verbose) spdlog::set_level(spdlog::level::debug);
+  try {
+    for (auto* sub : app.get_subcommands())
+      if (commands.count(sub)) return commands[sub]();
+    return cli::kExitBadInput;
+  } catch (const InputError& e) {
+    spdlog::error("{}", e.what());
+    return cli::kExitBadInput;
+  } catch (const OutputError& e) {
+    spdlog::error("{}", e.what());
+    return cli::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("out of memory. Try a coarser --patch-size or a smaller model.");
+    return cli::kExitInternal;
+  } catch (const std::exception& e) {
+    spdlog::error("internal error: {}. Please report this with the input file.", e.what());
+    return cli::kExitInternal;
+  }
+}

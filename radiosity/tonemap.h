@@ -1,0 +1,26 @@
+// Display encoding of linear values: exposure, clamp, sRGB transfer curve. Viewers
+// (MeshLab, Blender's byte colours) read vertex colours as sRGB, so writing linear
+// radiosity straight into bytes makes everything look too dark.
+#pragma once
+
+#include "mesh/export.h"
+#include "mesh/types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace dynrad::rad {
+
+// Linear [0, 1] to an sRGB-encoded byte (values outside are clamped).
+std::uint8_t encode_srgb(double linear);
+
+// An exposure that maps the 99th percentile of the luminances marked in `include` to
+// 0.9 before encoding, so a few very bright vertices (emitters) do not darken the
+// rest. Returns 1 when nothing is included or everything is black.
+double auto_exposure(const std::vector<Rgb>& linear, const std::vector<char>& include);
+
+// Fills display colours (exposure, then sRGB) and quality (luminance, linear and
+// unexposed) for the given linear values.
+VertexValues tone_map(std::vector<Rgb> linear, double exposure, const std::string& name);
+
+}  // namespace dynrad::rad
