@@ -12,6 +12,9 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
+
+#include <OpenMesh/Core/System/omstream.hh>
 
 namespace dynrad {
 namespace detail {
@@ -164,6 +167,33 @@ std::vector<std::uint32_t> ascii_data_lines(const std::string& text, const std::
   return lines;
 }
 
+// Each of the first `count` data lines must hold finite numbers only.
+void check_ascii_vertices(const std::string& path, const std::string& text, const std::vector<std::uint32_t>& data_lines,
+                          std::size_t count) {
+  std::vector<std::string_view> lines;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(std::string_view(text).substr(start, end - start));
+    start = end + 1;
+  }
+  for (std::size_t k = 0; k < count && k < data_lines.size(); ++k) {
+    const std::string line(lines[data_lines[k] - 1]);
+    std::istringstream in(line);
+    for (std::string token; in >> token;) {
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0')
+        throw InputError(path, data_lines[k], "vertex " + std::to_string(k) + ": '" + token + "' is not a number.");
+      if (!std::isfinite(value))
+        throw InputError(path, data_lines[k],
+                         "vertex " + std::to_string(k) + " has a coordinate that is not finite ('" + token +
+                             "'). Fix it in the modelling tool.");
+    }
+  }
+}
+
 bool is_ascii(const std::string& text, const std::string& ext) {
   if (ext == ".off") return text.rfind("OFF BINARY", 0) != 0 && text.find("BINARY") > 16;
   if (ext == ".ply") return text.find("format ascii") != std::string::npos;
@@ -186,17 +216,18 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
 
   SoupImporter importer;
   OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;
-  std::istringstream stream(text);
-  const bool ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
-  if (!ok)
-    throw InputError(path, 0,
-                     "could not be read as " + upper +
-                         " (OpenMesh's reader refused it). The file is damaged or not really " + upper + ".");
+  // OpenMesh prints its own parse complaints; ours below are more specific.
+  omerr().disable();
+  const bool ok = OpenMesh::IO::IOManager().read(path, importer, options);
+  omerr().enable();
 
   const bool ascii = is_ascii(text, ext) && ext != ".stl";
   const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(text, ext) : std::vector<std::uint32_t>();
   auto data_line = [&](std::size_t k) -> std::size_t { return k < data_lines.size() ? data_lines[k] : 0; };
   auto vertex_location = [&](std::size_t v) { return data_line(v); };
+  // OpenMesh's ASCII parsers stop or misread at "nan"/"inf"; check the vertex lines
+  // ourselves so the message names the line.
+  if (ascii && importer.reserved) check_ascii_vertices(path, text, data_lines, importer.declared_vertices);
   if (importer.reserved && importer.points.size() < importer.declared_vertices)
     throw InputError(path, vertex_location(importer.points.size()),
                      "the header declares " + std::to_string(importer.declared_vertices) + " vertices but only " +
@@ -205,6 +236,10 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
     throw InputError(path, 0,
                      "the header declares " + std::to_string(importer.declared_faces) + " faces but only " +
                          std::to_string(importer.polygons.size()) + " could be read (is the file truncated?).");
+  if (!ok)
+    throw InputError(path, 0,
+                     "could not be read as " + upper +
+                         " (OpenMesh's reader refused it). The file is damaged or not really " + upper + ".");
   if (importer.bad_face != SIZE_MAX) {
     const std::size_t line = data_line(importer.points.size() + importer.bad_face);
     throw InputError(path, line,

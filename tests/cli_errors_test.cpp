@@ -1,0 +1,161 @@
+// Bad input through the command line: each case must print a message naming the file
+// (and line where the format has lines), exit with code 2, and leave no output file
+// (or leave an existing one untouched).
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace dynrad {
+namespace {
+
+using test::TempDir;
+
+const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+struct Refusal {
+  std::string output;  // what dynrad printed
+};
+
+// Runs `dynrad clean INPUT -o OUT` twice: with no output file present (none may
+// appear) and with an existing one (it must keep its contents).
+Refusal expect_refused(const TempDir& dir, const std::string& input, const std::vector<std::string>& must_mention,
+                       const std::string& output_name = "out.ply") {
+  const std::string out = dir.path(output_name);
+  std::filesystem::remove(out);
+  const auto result = test::run_dynrad("clean '" + input + "' -o '" + out + "'");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_FALSE(test::file_exists(out)) << "a failed run left " << out;
+  for (const auto& text : must_mention) EXPECT_NE(result.output.find(text), std::string::npos) << result.output;
+  // An existing output survives.
+  if (std::filesystem::path(out).parent_path() == std::filesystem::path(dir.path(""))) {
+    dir.write(output_name, "precious");
+    const auto again = test::run_dynrad("clean '" + input + "' -o '" + out + "'");
+    EXPECT_EQ(again.exit_code, 2);
+    EXPECT_EQ(test::read_text(out), "precious");
+    std::filesystem::remove(out);
+  }
+  // No temporary file is left behind either.
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path("")))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  return {result.output};
+}
+
+TEST(BadInput, TruncatedBinaryPly) {
+  TempDir dir;
+  const auto made = test::run_dynrad("clean '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("full.ply") + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const std::string full = test::read_text(dir.path("full.ply"));
+  const std::string input = dir.write("cut.ply", full.substr(0, full.size() / 2));
+  expect_refused(dir, input, {"cut.ply", "truncated"});
+}
+
+TEST(BadInput, TruncatedObjNamesTheLine) {
+  TempDir dir;
+  const std::string input = dir.write("cut.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2");
+  expect_refused(dir, input, {"cut.obj:4", "truncated"});
+  const std::string vertex = dir.write("cutv.obj", "v 0 0 0\nv 1 0 0\nv 0 1");
+  expect_refused(dir, vertex, {"cutv.obj:3"});
+}
+
+TEST(BadInput, MislabelledFiles) {
+  TempDir dir;
+  expect_refused(dir, dir.write("text.ply", kTriangleObj), {"text.ply", "mislabelled"});
+  expect_refused(dir, dir.write("text.off", "ply\nformat ascii 1.0\n"), {"text.off", "looks like .ply"});
+  expect_refused(dir, dir.write("binary.obj", std::string("\x01\x02\0\x03", 4)), {"binary.obj", "binary data"});
+}
+
+TEST(BadInput, NanAndInfinityNameTheLine) {
+  TempDir dir;
+  expect_refused(dir, dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), {"nan.obj:2", "not finite"});
+  expect_refused(dir, dir.write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"), {"inf.obj:3"});
+  const auto off = expect_refused(dir, dir.write("inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"), {"inf.off"});
+  EXPECT_NE(off.output.find("inf.off:4"), std::string::npos) << off.output;
+}
+
+TEST(BadInput, OutOfRangeIndices) {
+  TempDir dir;
+  expect_refused(dir, dir.write("idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), {"idx.obj:4", "vertex 9"});
+  const auto off = expect_refused(dir, dir.write("idx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), {"idx.off"});
+  EXPECT_NE(off.output.find("vertex 7"), std::string::npos) << off.output;
+}
+
+TEST(BadInput, EmptyScenes) {
+  TempDir dir;
+  expect_refused(dir, dir.write("empty.obj", "# nothing here\n"), {"empty.obj", "no faces"});
+  expect_refused(dir, dir.write("empty.ply", ""), {"empty.ply", "empty"});
+  expect_refused(dir, dir.write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), {"flat.obj", "degenerate"});
+}
+
+TEST(BadInput, MissingMtlNamesTheObjLine) {
+  TempDir dir;
+  expect_refused(dir, dir.write("m.obj", std::string("mtllib gone.mtl\n") + kTriangleObj), {"m.obj:1", "gone.mtl"});
+}
+
+TEST(BadInput, UnreadableInput) {
+  TempDir dir;
+  expect_refused(dir, dir.path("does-not-exist.obj"), {"does-not-exist.obj", "not found"});
+  std::filesystem::create_directory(dir.path("folder.obj"));
+  expect_refused(dir, dir.path("folder.obj"), {"folder.obj", "directory"});
+  expect_refused(dir, dir.write("model.fbx", "x"), {"model.fbx", "unsupported"});
+}
+
+TEST(BadInput, UnwritableOutput) {
+  TempDir dir;
+  const std::string input = dir.write("ok.obj", kTriangleObj);
+  const auto r = test::run_dynrad("clean '" + input + "' -o '" + dir.path("no/such/dir/out.ply") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+  std::filesystem::create_directory(dir.path("adir.ply"));
+  const auto d = test::run_dynrad("clean '" + input + "' -o '" + dir.path("adir.ply") + "'");
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.output.find("is a directory"), std::string::npos) << d.output;
+  const auto ext = test::run_dynrad("clean '" + input + "' -o '" + dir.path("out.xyz") + "'");
+  EXPECT_EQ(ext.exit_code, 2);
+  EXPECT_FALSE(test::file_exists(dir.path("out.xyz")));
+}
+
+TEST(BadInput, ReflectanceOfOneOrMoreNamesTheMaterial) {
+  TempDir dir;
+  dir.write("r.mtl", "newmtl glowing_white\nKd 1.0 1.0 1.0\n");
+  expect_refused(dir, dir.write("r.obj", std::string("mtllib r.mtl\nusemtl glowing_white\n") + kTriangleObj),
+                 {"glowing_white", "r.mtl:1", "below 1"});
+}
+
+TEST(BadInput, BrokenSceneFiles) {
+  TempDir dir;
+  dir.write("t.obj", kTriangleObj);
+  expect_refused(dir, dir.write("syntax.json", "{\n  \"meshes\": [\n    {\"file\": \"t.obj\",}\n  ]\n}\n"),
+                 {"syntax.json:3", "invalid JSON"});
+  expect_refused(dir, dir.write("key.json", R"({"meshes": [{"file": "t.obj"}], "lights": []})"),
+                 {"key.json", "unknown key \"lights\""});
+  expect_refused(dir, dir.write("missing.json", R"({"meshes": [{"file": "nope.obj"}]})"), {"nope.obj", "not found"});
+}
+
+TEST(CommandLine, InfoReportsCountsAndJson) {
+  const auto text = test::run_dynrad("info '" + test::sample("globillum_room.obj") + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("60 triangles"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("light"), std::string::npos);
+  const auto json = test::run_dynrad("info --json '" + test::sample("globillum_room.obj") + "'");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const auto j = nlohmann::json::parse(json.output);
+  EXPECT_EQ(j["faces"].get<int>(), 60);
+  EXPECT_NEAR(j["total_area"].get<double>(), 216.0, 1e-9);
+  EXPECT_NEAR(j["emitting_area"].get<double>(), 0.25, 1e-12);
+  EXPECT_NEAR(j["emitted_power"][0].get<double>(), 0.25 * 31.416, 1e-9);
+  EXPECT_EQ(j["repairs"]["total"].get<int>(), 0);
+  EXPECT_EQ(j["materials"].size(), 4u);
+}
+
+TEST(CommandLine, BadOptionsExitWithCode2) {
+  EXPECT_EQ(test::run_dynrad("info").exit_code, 2);
+  EXPECT_EQ(test::run_dynrad("frobnicate x").exit_code, 2);
+  EXPECT_EQ(test::run_dynrad("--help").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace dynrad

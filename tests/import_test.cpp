@@ -1,0 +1,188 @@
+#include "mesh/error.h"
+#include "mesh/import.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace dynrad {
+namespace {
+
+using test::TempDir;
+
+const char* kMtl =
+    "newmtl white\nKd 0.7 0.6 0.5\n"
+    "newmtl lamp\nKd 0 0 0\nKe 10 20 30\n";
+
+const char* kObj =
+    "# two groups, a quad and a triangle\n"
+    "mtllib scene.mtl\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
+    "g floor\nusemtl white\n"
+    "f 1 2 3 4\n"
+    "g light\nusemtl lamp\n"
+    "f 1 5 2\n";
+
+TEST(ImportObj, MaterialsGroupsAndPolygonsAreKept) {
+  TempDir dir;
+  dir.write("scene.mtl", kMtl);
+  const PolygonSoup soup = read_model(dir.write("scene.obj", kObj));
+  ASSERT_EQ(soup.polygons.size(), 2u);
+  EXPECT_EQ(soup.polygons[0].size(), 4u);  // not triangulated by the reader
+  EXPECT_EQ(soup.points.size(), 5u);
+  const Material& white = soup.materials[soup.material[0]];
+  const Material& lamp = soup.materials[soup.material[1]];
+  EXPECT_EQ(white.name, "white");
+  EXPECT_DOUBLE_EQ(white.reflectance.g, 0.6);
+  EXPECT_FALSE(white.emits());
+  EXPECT_EQ(lamp.name, "lamp");
+  EXPECT_DOUBLE_EQ(lamp.emission.b, 30.0);
+  EXPECT_EQ(soup.group_names[soup.group[0]], "floor");
+  EXPECT_EQ(soup.group_names[soup.group[1]], "light");
+  EXPECT_EQ(soup.origin[0].line, 10u);
+  EXPECT_EQ(soup.origin[1].line, 13u);
+  EXPECT_NE(white.origin.find("scene.mtl:1"), std::string::npos);
+}
+
+TEST(ImportObj, FacesWithoutMaterialGetTheDefaultGrey) {
+  TempDir dir;
+  const PolygonSoup soup = read_model(dir.write("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  ASSERT_EQ(soup.polygons.size(), 1u);
+  EXPECT_EQ(soup.materials[soup.material[0]].name, "default");
+  EXPECT_DOUBLE_EQ(soup.materials[soup.material[0]].reflectance.r, 0.5);
+}
+
+TEST(ImportObj, NegativeIndicesAreRelative) {
+  TempDir dir;
+  const PolygonSoup soup = read_model(dir.write("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"));
+  ASSERT_EQ(soup.polygons.size(), 1u);
+  EXPECT_EQ(soup.polygons[0], (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+TEST(ImportPly, FaceColoursBecomeLinearReflectance) {
+  TempDir dir;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nend_header\n"
+      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+      "3 0 1 2 128 128 128\n"
+      "3 0 2 3 255 255 255\n";
+  const PolygonSoup soup = read_model(dir.write("c.ply", ply));
+  ASSERT_EQ(soup.polygons.size(), 2u);
+  // sRGB 128/255 is linear 0.2158.
+  EXPECT_NEAR(soup.materials[soup.material[0]].reflectance.r, 0.2158, 1e-4);
+  // White is clamped: no surface reflects everything.
+  EXPECT_DOUBLE_EQ(soup.materials[soup.material[1]].reflectance.r, 0.95);
+  ASSERT_EQ(soup.warnings.size(), 1u);
+  EXPECT_NE(soup.warnings[0].find("clamped"), std::string::npos);
+  EXPECT_EQ(soup.origin[1].line, 18u);
+}
+
+TEST(ImportOff, QuadsAndPositions) {
+  TempDir dir;
+  const PolygonSoup soup = read_model(dir.write("q.off", "OFF\n4 1 0\n0 0 0\n2 0 0\n2 3 0\n0 3 0\n4 0 1 2 3\n"));
+  ASSERT_EQ(soup.polygons.size(), 1u);
+  EXPECT_EQ(soup.polygons[0].size(), 4u);
+  EXPECT_NEAR(test::polygon_area(soup), 6.0, 1e-12);
+}
+
+TEST(ImportStl, AsciiAndBinaryGiveTheSameTriangle) {
+  TempDir dir;
+  const std::string ascii =
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 4 0 0\nvertex 0 3 0\nendloop\nendfacet\n"
+      "endsolid t\n";
+  std::string binary(80, ' ');
+  const std::uint32_t count = 1;
+  binary.append(reinterpret_cast<const char*>(&count), 4);
+  const float data[12] = {0, 0, 1, 0, 0, 0, 4, 0, 0, 0, 3, 0};
+  binary.append(reinterpret_cast<const char*>(data), sizeof data);
+  binary.append(2, '\0');
+  for (const std::string& content : {ascii, binary}) {
+    const PolygonSoup soup = read_model(dir.write("t.stl", content));
+    ASSERT_EQ(soup.polygons.size(), 1u);
+    EXPECT_NEAR(test::polygon_area(soup), 6.0, 1e-6);
+  }
+}
+
+TEST(ImportScene, AssignsMaterialsByGroupAndTransforms) {
+  TempDir dir;
+  dir.write("scene.mtl", kMtl);
+  dir.write("room.obj", kObj);
+  dir.write("q.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  const std::string json = R"({
+    "meshes": [
+      {"file": "room.obj", "groups": {"floor": "lamp"}},
+      {"file": "q.off", "material": "panel",
+       "transform": {"scale": 2, "rotate_deg": [0, 0, 90], "translate": [10, 0, 0]}}
+    ],
+    "materials": {
+      "panel": {"reflectance": [0.2, 0.3, 0.4]},
+      "lamp": {"emission": 5}
+    }
+  })";
+  const PolygonSoup soup = read_input(dir.write("scene.json", json));
+  ASSERT_EQ(soup.polygons.size(), 3u);
+  // The floor group now uses lamp, whose emission the scene replaced.
+  EXPECT_EQ(soup.materials[soup.material[0]].name, "lamp");
+  EXPECT_DOUBLE_EQ(soup.materials[soup.material[0]].emission.g, 5.0);
+  EXPECT_DOUBLE_EQ(soup.materials[soup.material[0]].reflectance.r, 0.0);  // kept from the MTL
+  EXPECT_EQ(soup.materials[soup.material[2]].name, "panel");
+  EXPECT_DOUBLE_EQ(soup.materials[soup.material[2]].reflectance.b, 0.4);
+  // (1, 0, 0) scaled by 2, turned 90 degrees about z, moved by 10 in x: (10, 2, 0).
+  const Vec3d p = soup.points[soup.polygons[2][1]];
+  EXPECT_NEAR(p[0], 10.0, 1e-12);
+  EXPECT_NEAR(p[1], 2.0, 1e-12);
+}
+
+TEST(ImportScene, MirroringKeepsTheFacing) {
+  TempDir dir;
+  dir.write("q.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const PolygonSoup soup = read_input(dir.write(
+      "m.json", R"({"meshes": [{"file": "q.off", "transform": {"scale": [-1, 1, 1]}}]})"));
+  const auto& poly = soup.polygons[0];
+  const Vec3d n = OpenMesh::cross(soup.points[poly[1]] - soup.points[poly[0]], soup.points[poly[2]] - soup.points[poly[0]]);
+  EXPECT_GT(n[2], 0.0);  // still faces +z
+}
+
+TEST(ImportScene, UnknownKeysAreErrors) {
+  TempDir dir;
+  dir.write("q.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string path = dir.write("bad.json", R"({"meshes": [{"file": "q.off", "materal": "x"}]})");
+  try {
+    read_input(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("materal"), std::string::npos);
+    EXPECT_EQ(e.file(), path);
+  }
+}
+
+TEST(ImportValidation, ReflectanceOfOneIsRefusedNamingTheMaterial) {
+  TempDir dir;
+  dir.write("m.mtl", "newmtl mirror\nKd 1.0 0.5 0.5\n");
+  const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl mirror\nf 1 2 3\n");
+  try {
+    read_input(obj);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'mirror'"), std::string::npos) << what;
+    EXPECT_NE(what.find("m.mtl:1"), std::string::npos) << what;
+    EXPECT_NE(what.find("below 1"), std::string::npos) << what;
+  }
+}
+
+TEST(ImportValidation, UndefinedMaterialIsRefusedUnlessASceneDefinesIt) {
+  TempDir dir;
+  const std::string obj = dir.write("u.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl ghost\nf 1 2 3\n");
+  EXPECT_THROW(read_input(obj), InputError);
+  const PolygonSoup soup =
+      read_input(dir.write("u.json", R"({"meshes": [{"file": "u.obj"}], "materials": {"ghost": {"emission": 1}}})"));
+  EXPECT_TRUE(soup.materials[soup.material[0]].emits());
+}
+
+}  // namespace
+}  // namespace dynrad

@@ -1,0 +1,51 @@
+// Helpers for tests: scratch directories, running the dynrad binary, sample paths.
+#pragma once
+
+#include "mesh/soup.h"
+
+#include <string>
+
+namespace dynrad::test {
+
+// A fresh directory under the system temp dir, removed with its contents afterwards.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string path(const std::string& name) const;
+  // Writes `content` to `name` (binary-exact) and returns its path.
+  std::string write(const std::string& name, const std::string& content) const;
+
+ private:
+  std::string dir_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the dynrad executable with the given (shell-quoted) arguments.
+CommandResult run_dynrad(const std::string& arguments);
+// Runs any shell command line.
+CommandResult run_shell(const std::string& command);
+
+std::string sample(const std::string& name);
+std::string read_text(const std::string& path);
+bool file_exists(const std::string& path);
+
+// Total area of a polygon soup (each polygon by its Newell normal).
+double polygon_area(const PolygonSoup& soup);
+
+}  // namespace dynrad::test
+
+namespace dynrad {
+class SceneMesh;
+}
+namespace dynrad::test {
+// Number of (vertex, edge) pairs where a vertex lies strictly inside an edge it is not
+// an end of: T-vertices. A conforming mesh has none.
+std::size_t count_t_vertices(const SceneMesh& mesh, double relative_tolerance = 1e-9);
+}  // namespace dynrad::test
