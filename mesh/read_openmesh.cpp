@@ -39,14 +39,24 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   bool reserved = false;
   std::size_t bad_face = SIZE_MAX;  // first face with an out-of-range index
   std::size_t bad_index = 0;
+  std::size_t capacity = SIZE_MAX;  // refuse to grow past this many vertices or faces
+  bool overflow = false;
 
   VertexHandle add_vertex(const OpenMesh::Vec3f& p) override { return add_vertex(OpenMesh::Vec3d(p)); }
   VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
+    if (points.size() >= capacity) {
+      overflow = true;
+      return VertexHandle();
+    }
     points.push_back(p);
     return VertexHandle(static_cast<int>(points.size() - 1));
   }
   VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0.0)); }
   FaceHandle add_face(const VHandles& indices) override {
+    if (polygons.size() >= capacity) {
+      overflow = true;
+      return FaceHandle();
+    }
     std::vector<std::uint32_t> poly;
     poly.reserve(indices.size());
     for (const auto& vh : indices) {
@@ -81,8 +91,8 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     declared_vertices = nv;
     declared_faces = nf;
     reserved = true;
-    points.reserve(nv);
-    polygons.reserve(nf);
+    if (nv <= capacity) points.reserve(nv);
+    if (nf <= capacity) polygons.reserve(nf);
   }
   size_t n_vertices() const override { return points.size(); }
   size_t n_faces() const override { return polygons.size(); }
@@ -167,6 +177,58 @@ std::vector<std::uint32_t> ascii_data_lines(const std::string& text, const std::
   return lines;
 }
 
+// Comments ('#' to the end of the line) replaced by nothing, line breaks kept.
+std::string strip_comments(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool comment = false;
+  for (char c : text) {
+    if (c == '#') comment = true;
+    if (c == '\n') comment = false;
+    if (!comment) out.push_back(c);
+  }
+  return out;
+}
+
+// A damaged header can declare billions of elements; readers would then allocate or
+// loop until the machine gives up. Refuse counts the file's size cannot hold.
+void check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
+  std::uint64_t vertices = 0, faces = 0;
+  std::size_t body = 0;  // offset where element data starts
+  if (ext == ".ply") {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream words(line);
+      std::string key, name;
+      std::uint64_t count = 0;
+      words >> key;
+      if (key == "end_header") {
+        body = static_cast<std::size_t>(in.tellg());
+        break;
+      }
+      if (key == "element" && (words >> name >> count)) {
+        if (name == "vertex") vertices = count;
+        if (name == "face") faces = count;
+      }
+    }
+  } else if (ext == ".off") {
+    if (text.find("BINARY") < 16) return;  // binary OFF: counts are binary, OpenMesh checks them
+    std::istringstream in(strip_comments(text));
+    std::string magic;
+    in >> magic;
+    if (!(in >> vertices >> faces)) throw InputError(path, 0, "has no valid vertex and face counts after the OFF line.");
+    body = static_cast<std::size_t>(in.tellg());
+  } else {
+    return;  // STL: the count is implied by the size (binary) or absent (ASCII)
+  }
+  const std::uint64_t room = text.size() > body ? text.size() - body : 0;
+  if (vertices * 3 + faces * 4 > room)
+    throw InputError(path, 0,
+                     "the header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                         " faces, more than the " + std::to_string(room) +
+                         " bytes after it can hold: the file is truncated or its header is damaged.");
+}
+
 // Each of the first `count` data lines must hold finite numbers only.
 void check_ascii_vertices(const std::string& path, const std::string& text, const std::vector<std::uint32_t>& data_lines,
                           std::size_t count) {
@@ -214,20 +276,34 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
                          (sniffed.empty() ? std::string() : " (it looks like " + sniffed + ")") +
                          ". Is it mislabelled or damaged? Rename it to its real extension or re-export it.");
 
+  check_declared_counts(path, text, ext);
+  // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
+  // (keeping line numbers) and parse from memory.
+  const std::string parsed = ext == ".off" ? strip_comments(text) : text;
+
   SoupImporter importer;
+  importer.capacity = text.size();  // no format stores an element in less than a byte
   OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;
   // OpenMesh prints its own parse complaints; ours below are more specific.
   omerr().disable();
-  const bool ok = OpenMesh::IO::IOManager().read(path, importer, options);
+  bool ok = false;
+  if (ext == ".off") {
+    std::istringstream stream(parsed);
+    ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
+  } else {
+    ok = OpenMesh::IO::IOManager().read(path, importer, options);  // STL needs the file to tell ASCII from binary
+  }
   omerr().enable();
+  if (importer.overflow)
+    throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
 
   const bool ascii = is_ascii(text, ext) && ext != ".stl";
-  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(text, ext) : std::vector<std::uint32_t>();
+  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
   auto data_line = [&](std::size_t k) -> std::size_t { return k < data_lines.size() ? data_lines[k] : 0; };
   auto vertex_location = [&](std::size_t v) { return data_line(v); };
   // OpenMesh's ASCII parsers stop or misread at "nan"/"inf"; check the vertex lines
   // ourselves so the message names the line.
-  if (ascii && importer.reserved) check_ascii_vertices(path, text, data_lines, importer.declared_vertices);
+  if (ascii && importer.reserved) check_ascii_vertices(path, parsed, data_lines, importer.declared_vertices);
   if (importer.reserved && importer.points.size() < importer.declared_vertices)
     throw InputError(path, vertex_location(importer.points.size()),
                      "the header declares " + std::to_string(importer.declared_vertices) + " vertices but only " +

@@ -61,6 +61,16 @@ TEST(BadInput, TruncatedObjNamesTheLine) {
   expect_refused(dir, vertex, {"cutv.obj:3"});
 }
 
+// A damaged header must not make dynrad allocate or loop until the machine gives up.
+TEST(BadInput, ImpossibleElementCountsFailFast) {
+  TempDir dir;
+  expect_refused(dir, dir.write("huge.off", "OFF\n4000000000 1 0\n0 0 0\n"), {"huge.off", "declares 4000000000"});
+  expect_refused(dir, dir.write("huge.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 900000000\nproperty float x\n"
+                                "property float y\nproperty float z\nend_header\n0 0 0\n"),
+                 {"huge.ply", "header is damaged"});
+}
+
 TEST(BadInput, MislabelledFiles) {
   TempDir dir;
   expect_refused(dir, dir.write("text.ply", kTriangleObj), {"text.ply", "mislabelled"});

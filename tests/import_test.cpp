@@ -89,6 +89,15 @@ TEST(ImportOff, QuadsAndPositions) {
   EXPECT_NEAR(test::polygon_area(soup), 6.0, 1e-12);
 }
 
+TEST(ImportOff, CommentsAreAllowedAndLinesStillCount) {
+  TempDir dir;
+  const PolygonSoup soup = read_model(
+      dir.write("c.off", "OFF\n# a comment line\n3 1 0\n0 0 0 # trailing comment\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  ASSERT_EQ(soup.polygons.size(), 1u);
+  EXPECT_EQ(soup.origin[0].line, 7u);
+  EXPECT_NEAR(test::polygon_area(soup), 0.5, 1e-12);
+}
+
 TEST(ImportStl, AsciiAndBinaryGiveTheSameTriangle) {
   TempDir dir;
   const std::string ascii =

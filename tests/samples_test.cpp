@@ -51,7 +51,9 @@ INSTANTIATE_TEST_SUITE_P(
         // 6 x 6 x 3 room: 2 (36 + 18 + 18) = 144 m2; one 0.75 x 0.375 cell emits.
         SampleFacts{"paper_empty_room_small_source.obj", 144.0, 0.75 * 0.375, true},
         SampleFacts{"paper_empty_room_front_wall.obj", 144.0, 18.0, true},
-        SampleFacts{"paper_sphere_room.obj", 0, 2 * 0.75 * 0.375, true}));
+        SampleFacts{"paper_sphere_room.obj", 0, 2 * 0.75 * 0.375, true},
+        // Scene file: a 4 x 4 x 3 room from OFF (2 (16 + 12 + 12) = 80 m2) and a 0.6 x 0.6 lamp.
+        SampleFacts{"scene_room.json", 80.0 + 0.36, 0.36, false}));
 
 TEST(SampleFacing, RoomSurfacesFaceIntoTheRoom) {
   for (const char* file : {"globillum_room.obj", "paper_empty_room_small_source.obj", "paper_sphere_room.obj"}) {

@@ -1,0 +1,102 @@
+// Cleanup throughput on a generated polygon soup the size of a building floor.
+//
+// The soup is an n x n grid of unit quads where every quad has its own copies of its
+// corners (as many CAD exports do), every other row is made of double-width quads
+// (so each of their long edges carries a T-junction), and corners are jittered below
+// the merge tolerance. The reference in the same process is building the OpenMesh
+// half-edge mesh from the already clean result, so the printed ratio says what
+// cleanup costs relative to merely loading a clean mesh.
+#include "mesh/cleanup.h"
+#include "mesh/scene_mesh.h"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+namespace {
+
+dynrad::PolygonSoup make_grid_soup(int n) {
+  using dynrad::Vec3d;
+  dynrad::PolygonSoup soup;
+  soup.materials.push_back(dynrad::Material{"grey", dynrad::Rgb(0.5), dynrad::Rgb(0.0), "bench", true});
+  soup.group_names.push_back("grid");
+  soup.files.push_back("generated");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-1e-7 * n, 1e-7 * n);
+  auto add_quad = [&](double x0, double y0, double x1, double y1) {
+    std::vector<std::uint32_t> q;
+    for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}) {
+      soup.points.emplace_back(x + jitter(rng), y + jitter(rng), 0.0);
+      q.push_back(static_cast<std::uint32_t>(soup.points.size() - 1));
+    }
+    soup.polygons.push_back(q);
+    soup.material.push_back(0);
+    soup.group.push_back(0);
+    soup.origin.push_back(dynrad::SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+  };
+  for (int j = 0; j < n; ++j) {
+    if (j % 2 == 0) {
+      for (int i = 0; i < n; ++i) add_quad(i, j, i + 1, j + 1);
+    } else {
+      for (int i = 0; i + 1 < n; i += 2) add_quad(i, j, i + 2, j + 1);
+    }
+  }
+  return soup;
+}
+
+constexpr int kGrid = 300;  // about 135k polygons, 180k triangles after cleanup
+
+void BM_Cleanup(benchmark::State& state) {
+  const dynrad::PolygonSoup soup = make_grid_soup(kGrid);
+  dynrad::CleanupReport report;
+  for (auto _ : state) {
+    dynrad::TriangleSoup out;
+    report = dynrad::cleanup(soup, out);
+    benchmark::DoNotOptimize(out.triangles.data());
+  }
+  state.counters["polygons_per_s"] =
+      benchmark::Counter(static_cast<double>(soup.polygons.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["triangles_out"] = static_cast<double>(report.output_triangles);
+  state.counters["t_junctions"] = static_cast<double>(report.t_junctions);
+  state.counters["merged_points"] = static_cast<double>(report.merged_points);
+}
+BENCHMARK(BM_Cleanup)->Unit(benchmark::kMillisecond)->Repetitions(3)->ReportAggregatesOnly(true);
+
+// Reference: build the half-edge mesh from the clean triangles.
+void BM_BuildHalfEdgeMesh(benchmark::State& state) {
+  dynrad::TriangleSoup clean;
+  dynrad::cleanup(make_grid_soup(kGrid), clean);
+  for (auto _ : state) {
+    dynrad::SceneMesh mesh(clean);
+    benchmark::DoNotOptimize(mesh.face_count());
+  }
+  state.counters["triangles_per_s"] =
+      benchmark::Counter(static_cast<double>(clean.triangles.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_BuildHalfEdgeMesh)->Unit(benchmark::kMillisecond)->Repetitions(3)->ReportAggregatesOnly(true);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  // Collect medians to print the ratio after the table.
+  class Reporter : public benchmark::ConsoleReporter {
+   public:
+    double cleanup_ms = 0, build_ms = 0;
+    void ReportRuns(const std::vector<Run>& runs) override {
+      ConsoleReporter::ReportRuns(runs);
+      for (const auto& run : runs) {
+        if (run.aggregate_name != "median") continue;
+        const double ms = run.GetAdjustedRealTime();
+        if (run.benchmark_name().find("BM_Cleanup") == 0) cleanup_ms = ms;
+        if (run.benchmark_name().find("BM_BuildHalfEdgeMesh") == 0) build_ms = ms;
+      }
+    }
+  } reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  if (reporter.build_ms > 0)
+    std::printf("cleanup / half-edge build (medians): %.2f ms / %.2f ms, ratio: %.2f\n", reporter.cleanup_ms,
+                reporter.build_ms, reporter.cleanup_ms / reporter.build_ms);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# README's second command: build, then run the whole test suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/build.sh
+ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
