@@ -31,12 +31,17 @@ TEST_P(Samples, LoadCleanAndConforming) {
   // Newell's area is the projected one; the measured Cornell red wall is 3 mm out of
   // plane, so its triangles are slightly larger (1e-6 relative).
   EXPECT_NEAR(mesh.total_area(), test::polygon_area(soup), 1e-5 * test::polygon_area(soup));
-  if (facts.total_area > 0) EXPECT_NEAR(mesh.total_area(), facts.total_area, 1e-6 * facts.total_area);
+  if (facts.total_area > 0) {
+    EXPECT_NEAR(mesh.total_area(), facts.total_area, 1e-6 * facts.total_area);
+  }
   EXPECT_NEAR(mesh.emitting_area(), facts.emitting_area, 1e-6 * facts.emitting_area);
   std::size_t boundary = 0;
   for (auto e : mesh.mesh().edges()) boundary += mesh.mesh().is_boundary(e);
-  if (facts.closed) EXPECT_EQ(boundary, 0u);
-  else EXPECT_GT(boundary, 0u);
+  if (facts.closed) {
+    EXPECT_EQ(boundary, 0u);
+  } else {
+    EXPECT_GT(boundary, 0u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -74,11 +79,21 @@ TEST(SampleFacing, CornellBoxMatchesTheMeasuredOrientation) {
   for (auto f : mesh.mesh().faces()) {
     const std::string& group = mesh.group_names()[mesh.group(f)];
     const Vec3d n = mesh.normal(f);
-    if (group == "floor") EXPECT_GT(n[1], 0.99);
-    if (group == "ceiling" || group == "light") EXPECT_LT(n[1], -0.99);
-    if (group == "back_wall") EXPECT_LT(n[2], -0.99);
-    if (group == "green_wall") EXPECT_GT(n[0], 0.99);
-    if (group == "red_wall") EXPECT_LT(n[0], -0.99);
+    if (group == "floor") {
+      EXPECT_GT(n[1], 0.99);
+    }
+    if (group == "ceiling" || group == "light") {
+      EXPECT_LT(n[1], -0.99);
+    }
+    if (group == "back_wall") {
+      EXPECT_LT(n[2], -0.99);
+    }
+    if (group == "green_wall") {
+      EXPECT_GT(n[0], 0.99);
+    }
+    if (group == "red_wall") {
+      EXPECT_LT(n[0], -0.99);
+    }
   }
 }
 
