@@ -75,24 +75,52 @@ double polygon_area(const PolygonSoup& soup) {
 
 #include "mesh/scene_mesh.h"
 
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+
 namespace dynrad::test {
 
 std::size_t count_t_vertices(const SceneMesh& scene, double relative_tolerance) {
+  // Vertices binned in a uniform grid; each edge looks only at the cells its box covers.
   const TriMesh& mesh = scene.mesh();
-  const double tol = relative_tolerance * scene.bounds().diagonal();
+  const Bounds bounds = scene.bounds();
+  const double tol = relative_tolerance * bounds.diagonal();
+  double mean_edge = 0;
+  for (auto e : mesh.edges()) mean_edge += mesh.calc_edge_length(e);
+  mean_edge /= std::max<std::size_t>(1, mesh.n_edges());
+  const double cell = std::max(mean_edge, 1e-12 * bounds.diagonal());
+  auto cell_of = [&](double x, int axis) { return static_cast<long>(std::floor((x - bounds.lo[axis]) / cell)); };
+  std::unordered_map<long long, std::vector<VertexHandle>> grid;
+  auto key = [](long i, long j, long k) { return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^ (static_cast<long long>(k) * 83492791); };
+  for (auto v : mesh.vertices()) {
+    const Vec3d p = mesh.point(v);
+    grid[key(cell_of(p[0], 0), cell_of(p[1], 1), cell_of(p[2], 2))].push_back(v);
+  }
   std::size_t count = 0;
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
-    const Vec3d a = mesh.point(mesh.from_vertex_handle(h));
-    const Vec3d b = mesh.point(mesh.to_vertex_handle(h));
-    const Vec3d d = b - a;
-    for (auto v : mesh.vertices()) {
-      if (v == mesh.from_vertex_handle(h) || v == mesh.to_vertex_handle(h)) continue;
-      const Vec3d w = mesh.point(v) - a;
-      const double t = OpenMesh::dot(w, d) / d.sqrnorm();
-      if (t <= 1e-9 || t >= 1 - 1e-9) continue;
-      if ((w - d * t).norm() <= tol) ++count;
+    const VertexHandle va = mesh.from_vertex_handle(h), vb = mesh.to_vertex_handle(h);
+    const Vec3d a = mesh.point(va), b = mesh.point(vb), d = b - a;
+    long lo[3], hi[3];
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = cell_of(std::min(a[c], b[c]) - tol, c);
+      hi[c] = cell_of(std::max(a[c], b[c]) + tol, c);
     }
+    std::unordered_set<int> seen;
+    for (long i = lo[0]; i <= hi[0]; ++i)
+      for (long j = lo[1]; j <= hi[1]; ++j)
+        for (long k = lo[2]; k <= hi[2]; ++k) {
+          auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (auto v : it->second) {
+            if (v == va || v == vb || !seen.insert(v.idx()).second) continue;
+            const Vec3d w = mesh.point(v) - a;
+            const double t = OpenMesh::dot(w, d) / d.sqrnorm();
+            if (t <= 1e-9 || t >= 1 - 1e-9) continue;
+            if ((w - d * t).norm() <= tol) ++count;
+          }
+        }
   }
   return count;
 }
