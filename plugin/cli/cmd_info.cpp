@@ -1,5 +1,6 @@
 // `dynrad info FILE`: what dynrad sees in a model after cleanup.
 #include "mesh/load.h"
+#include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@ namespace {
 struct InfoOptions {
   LoadOptions load;
   bool json = false;
+  double patch_size = 0;  // 0: the default for the scene
 };
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
@@ -23,7 +25,11 @@ int run_info(const InfoOptions& options) {
   CleanupOptions cleanup;
   cleanup.merge_tolerance = options.load.merge_tolerance;
   LoadedScene scene = load_scene(options.load.input, cleanup);
-  const SceneMesh& mesh = *scene.mesh;
+  SceneMesh& mesh = *scene.mesh;
+  // Measured before patching: what the model itself holds.
+  const std::size_t model_vertices = mesh.vertex_count(), model_faces = mesh.face_count();
+  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
+  const PatchingReport patching = make_patches(mesh, patch_size);
   const CleanupReport& r = scene.cleanup;
   const Bounds b = mesh.bounds();
 
@@ -56,8 +62,13 @@ int run_info(const InfoOptions& options) {
     j["files"] = scene.input_files;
     j["input_points"] = r.input_points;
     j["input_polygons"] = r.input_polygons;
-    j["vertices"] = mesh.vertex_count();
-    j["faces"] = mesh.face_count();
+    j["vertices"] = model_vertices;
+    j["faces"] = model_faces;
+    j["patches"] = {{"patch_size", patch_size},
+                    {"count", patching.patches},
+                    {"splits", patching.splits.total()},
+                    {"min_angle_model_deg", patching.min_angle_before},
+                    {"min_angle_patches_deg", patching.min_angle_after}};
     j["bounds"] = {{"min", {b.lo[0], b.lo[1], b.lo[2]}}, {"max", {b.hi[0], b.hi[1], b.hi[2]}}};
     j["total_area"] = mesh.total_area();
     j["emitting_area"] = mesh.emitting_area();
@@ -83,7 +94,9 @@ int run_info(const InfoOptions& options) {
   std::cout << fmt::format("input           {} ({} file{})\n", options.load.input, scene.input_files,
                            scene.input_files == 1 ? "" : "s");
   std::cout << fmt::format("read            {} points, {} polygons\n", r.input_points, r.input_polygons);
-  std::cout << fmt::format("mesh            {} vertices, {} triangles\n", mesh.vertex_count(), mesh.face_count());
+  std::cout << fmt::format("mesh            {} vertices, {} triangles\n", model_vertices, model_faces);
+  std::cout << fmt::format("patches         {} at patch size {:.4g} (smallest angle {:.1f} deg, model's {:.1f})\n",
+                           patching.patches, patch_size, patching.min_angle_after, patching.min_angle_before);
   std::cout << fmt::format("bounds          ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}), size {:.6g} x {:.6g} x {:.6g}\n",
                            b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2], size[0], size[1], size[2]);
   std::cout << fmt::format("area            {:.6g} total, {:.6g} emitting (model units squared)\n", mesh.total_area(),
@@ -115,6 +128,9 @@ Command add_info_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("info", "Print what dynrad reads from a model: sizes, materials, repairs");
   add_load_options(*command, options->load);
   command->add_flag("--json", options->json, "Print the information as JSON");
+  command->add_option("--patch-size", options->patch_size,
+                      "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
+      ->check(CLI::PositiveNumber);
   return [options] { return run_info(*options); };
 }
 
