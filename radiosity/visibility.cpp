@@ -1,0 +1,119 @@
+#include "radiosity/visibility.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace dynrad::rad {
+namespace {
+
+void embree_error(void* /*user*/, RTCError code, const char* message) {
+  // Embree reports through this callback; we turn its errors into exceptions at the
+  // call site by checking the device, so here we only log.
+  spdlog::error("Embree error {}: {}", static_cast<int>(code), message ? message : "");
+}
+
+void check(RTCDevice device, const char* what) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree failed while ") + what);
+}
+
+}  // namespace
+
+Visibility::Visibility(const SceneMesh& scene) {
+  const TriMesh& mesh = scene.mesh();
+  const Bounds bounds = scene.bounds();
+  centre_ = (bounds.lo + bounds.hi) * 0.5;
+  // Offsets: large against float rounding at the scene's scale, small against any
+  // feature a model of that size has.
+  epsilon_ = 1e-6 * std::max(bounds.diagonal(), 1e-30) + 4 * std::numeric_limits<float>::epsilon() *
+                                                                 std::max(1.0, (bounds.hi - centre_).norm());
+
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("Embree could not create a device");
+  rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.n_vertices()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.n_faces()));
+  check(device_, "allocating geometry");
+  for (auto v : mesh.vertices()) {
+    const Vec3d p = mesh.point(v) - centre_;
+    for (int c = 0; c < 3; ++c) vertices[3 * v.idx() + c] = static_cast<float>(p[c]);
+  }
+  face_normals_.resize(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) indices[3 * f.idx() + k++] = static_cast<unsigned>(v.idx());
+    face_normals_[f.idx()] = mesh.normal(f);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene_);
+  check(device_, "building the scene");
+}
+
+Visibility::~Visibility() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to) const {
+  const Vec3d origin = from + from_normal * epsilon_ - centre_;
+  Vec3d direction = (to - centre_) - origin;
+  const double distance = direction.norm();
+  if (distance <= 2 * epsilon_) return false;
+  direction /= distance;
+  RTCRay ray;
+  ray.org_x = static_cast<float>(origin[0]);
+  ray.org_y = static_cast<float>(origin[1]);
+  ray.org_z = static_cast<float>(origin[2]);
+  ray.dir_x = static_cast<float>(direction[0]);
+  ray.dir_y = static_cast<float>(direction[1]);
+  ray.dir_z = static_cast<float>(direction[2]);
+  ray.tnear = static_cast<float>(epsilon_);
+  ray.tfar = static_cast<float>(distance - 2 * epsilon_);  // stop short of the target surface
+  ray.mask = 0xFFFFFFFFu;
+  ray.time = 0;
+  ray.flags = 0;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1(scene_, &context, &ray);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal, const Vec3d& direction) const {
+  const Vec3d origin = origin_world + normal * epsilon_ - centre_;
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin[0]);
+  rh.ray.org_y = static_cast<float>(origin[1]);
+  rh.ray.org_z = static_cast<float>(origin[2]);
+  rh.ray.dir_x = static_cast<float>(direction[0]);
+  rh.ray.dir_y = static_cast<float>(direction[1]);
+  rh.ray.dir_z = static_cast<float>(direction[2]);
+  rh.ray.tnear = static_cast<float>(epsilon_);
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.time = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(scene_, &context, &rh);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit::nothing;
+  return OpenMesh::dot(face_normals_[rh.hit.primID], direction) < 0 ? Hit::front : Hit::back;
+}
+
+}  // namespace dynrad::rad

@@ -1,0 +1,47 @@
+// Occlusion queries against the scene's surfaces, with Embree 3.
+//
+// Refinement never moves a surface (midpoints lie on their flat triangles), so the
+// Embree scene is built once from the patch mesh. Coordinates are shifted to the
+// scene's centre before Embree's single-precision conversion, and every ray is kept
+// off the surfaces it starts and ends on by a distance relative to the scene size.
+#pragma once
+
+#include "mesh/scene_mesh.h"
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+namespace dynrad::rad {
+
+class Visibility {
+ public:
+  explicit Visibility(const SceneMesh& scene);
+  ~Visibility();
+  Visibility(const Visibility&) = delete;
+  Visibility& operator=(const Visibility&) = delete;
+
+  // True when the open segment from `from` (a point on a surface with unit normal
+  // `from_normal`) to `to` (a point on another surface) is blocked.
+  bool occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to) const;
+
+  enum class Hit { nothing, front, back };
+  // What a ray from `origin` (on a surface with unit normal `normal`) in direction
+  // `direction` meets first: nothing (it leaves the scene), a face's front, or a back.
+  Hit trace(const Vec3d& origin, const Vec3d& normal, const Vec3d& direction) const;
+
+  std::uint64_t rays() const { return rays_.load(std::memory_order_relaxed); }
+  double epsilon() const { return epsilon_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  Vec3d centre_;
+  double epsilon_ = 0;
+  std::vector<Vec3d> face_normals_;  // by Embree primitive id
+  mutable std::atomic<std::uint64_t> rays_{0};
+};
+
+}  // namespace dynrad::rad

@@ -1,0 +1,128 @@
+// Form factors against closed forms (Cohen & Wallace 1993), numerical integration,
+// reciprocity; and visibility with occluders through Embree.
+#include "mesh/load.h"
+#include "radiosity/form_factor.h"
+#include "radiosity/visibility.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace dynrad::rad {
+namespace {
+
+// Area-to-area form factor F(receiver -> sender) as the receiver-average of point form
+// factors, midpoint rule on an n x n grid over the receiver rectangle
+// origin + s*u + t*v, s,t in [0,1].
+double rectangle_to_polygon(const Vec3d& origin, const Vec3d& u, const Vec3d& v, const Vec3d* sender, int count,
+                            const Vec3d& sender_front, int n) {
+  const Vec3d normal = OpenMesh::cross(u, v).normalized();
+  double sum = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Vec3d x = origin + u * ((i + 0.5) / n) + v * ((j + 0.5) / n);
+      sum += point_to_polygon(x, normal, sender, count, sender_front);
+    }
+  return sum / (n * n);
+}
+
+TEST(FormFactor, ParallelUnitSquaresAtDistanceOne) {
+  // Receiver z = 0 facing +z; sender z = 1 facing -z (counter-clockwise seen from below).
+  const Vec3d sender[4] = {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
+  const double f = rectangle_to_polygon({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, sender, 4, {0, 0, -1}, 64);
+  EXPECT_NEAR(f, 0.1998, 2e-4);
+}
+
+TEST(FormFactor, PerpendicularUnitSquaresSharingAnEdge) {
+  // Receiver floor z = 0 (facing +z); sender wall x = 0 facing +x.
+  const Vec3d sender[4] = {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}};
+  const double f = rectangle_to_polygon({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, sender, 4, {1, 0, 0}, 256);
+  EXPECT_NEAR(f, 0.20004, 1e-3);
+}
+
+TEST(FormFactor, BackFacingAndBelowTheHorizonGiveZero) {
+  const Vec3d tri[3] = {{0, 0, 1}, {0, 1, 1}, {1, 0, 1}};
+  EXPECT_EQ(point_to_polygon({0.2, 0.2, 0}, {0, 0, 1}, tri, 3, {0, 0, 1}), 0.0);   // sender faces away
+  EXPECT_EQ(point_to_polygon({0.2, 0.2, 0}, {0, 0, -1}, tri, 3, {0, 0, -1}), 0.0); // sender behind receiver
+  // A sender of one infinite-looking half plane seen from its edge: F -> 1/2 of a hemisphere.
+  const Vec3d big[4] = {{-1e4, -1e4, 1e-3}, {-1e4, 1e4, 1e-3}, {1e4, 1e4, 1e-3}, {1e4, -1e4, 1e-3}};
+  EXPECT_NEAR(point_to_polygon({0, 0, 0}, {0, 0, 1}, big, 4, {0, 0, -1}), 1.0, 1e-3);
+}
+
+// Lambert's closed form against brute-force integration of cos cos / (pi r^2) over the
+// sender, for random triangles, including ones cut by the receiver's horizon.
+TEST(FormFactor, LambertMatchesNumericalIntegration) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0);
+  int clipped = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Vec3d a(coord(rng), coord(rng), 0.6 + coord(rng)), b(coord(rng), coord(rng), 0.6 + coord(rng)),
+        c(coord(rng), coord(rng), 0.6 + coord(rng));
+    Vec3d front = OpenMesh::cross(b - a, c - a);
+    if (front.norm() < 0.2) continue;
+    front.normalize();
+    const Vec3d x(0, 0, 0), n(0, 0, 1);
+    if (OpenMesh::dot(front, x - a) <= 0) {  // make it face the receiver
+      std::swap(b, c);
+      front = -front;
+    }
+    clipped += (a[2] < 0 || b[2] < 0 || c[2] < 0);
+    const double closed = point_to_triangle(x, n, a, b, c, front);
+    // Numerical: 400 x 400 midpoint samples in barycentric squares.
+    const int m = 400;
+    double sum = 0;
+    const double area = 0.5 * OpenMesh::cross(b - a, c - a).norm();
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m - i; ++j)
+        for (int up = 0; up < 2; ++up) {
+          if (up && j == m - i - 1) continue;
+          const double s = up ? (i + 2.0 / 3) / m : (i + 1.0 / 3) / m;
+          const double t = up ? (j + 2.0 / 3) / m : (j + 1.0 / 3) / m;
+          const Vec3d p = a + (b - a) * s + (c - a) * t;
+          const Vec3d r = p - x;
+          const double d2 = r.sqrnorm();
+          const double cos_x = OpenMesh::dot(n, r) / std::sqrt(d2);
+          const double cos_p = -OpenMesh::dot(front, r) / std::sqrt(d2);
+          if (cos_x > 0 && cos_p > 0) sum += cos_x * cos_p / (M_PI * d2);
+        }
+    const double numeric = sum * area / (m * m);
+    EXPECT_NEAR(closed, numeric, 2e-3 * std::max(numeric, 0.05)) << "trial " << trial;
+  }
+  EXPECT_GT(clipped, 3);  // the horizon clipping was exercised
+}
+
+TEST(FormFactor, Reciprocity) {
+  // Two unit squares at a skew: A_i F_ij = A_j F_ji, each side integrated numerically.
+  const Vec3d floor[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};                 // faces +z, area 1
+  const Vec3d slope[4] = {{0.5, 0, 1.5}, {0.5, 2, 1.5}, {2, 2, 0.8}, {2, 0, 0.8}};      // faces down-ish
+  const Vec3d slope_front = OpenMesh::cross(slope[1] - slope[0], slope[2] - slope[0]).normalized();
+  const double slope_area = OpenMesh::cross(slope[1] - slope[0], slope[3] - slope[0]).norm();
+  const double f_floor_to_slope = rectangle_to_polygon(floor[0], {1, 0, 0}, {0, 1, 0}, slope, 4, slope_front, 96);
+  const double f_slope_to_floor =
+      rectangle_to_polygon(slope[0], slope[1] - slope[0], slope[3] - slope[0], floor, 4, {0, 0, 1}, 96);
+  ASSERT_GT(f_floor_to_slope, 0.01);
+  EXPECT_NEAR(1.0 * f_floor_to_slope, slope_area * f_slope_to_floor, 2e-3 * f_floor_to_slope);
+}
+
+TEST(Visibility, OccludersBlockAndOpenSpaceDoesNot) {
+  // The obstructed comparison room: partition A spans x 2.95..3.05, y 3..6.
+  LoadedScene loaded = load_scene(test::sample("globillum_room_obstructed.obj"));
+  Visibility vis(*loaded.mesh);
+  const Vec3d up(0, 0, 1);
+  // Across the partition: blocked. Along the open side: clear.
+  EXPECT_TRUE(vis.occluded({1.0, 4.5, 0.0}, up, {5.0, 4.5, 3.0}));
+  EXPECT_FALSE(vis.occluded({1.0, 1.5, 0.0}, up, {5.0, 1.5, 3.0}));
+  // A ray starting on the floor toward the ceiling light is not blocked by the floor
+  // itself or by the light it ends on.
+  EXPECT_FALSE(vis.occluded({5.0, 3.0, 0.0}, up, {5.0, 3.0, 3.0}));
+  EXPECT_EQ(vis.rays(), 3u);
+  // Straight up from the floor meets the ceiling's front; from outside the room, nothing.
+  EXPECT_EQ(vis.trace({1, 1, 0}, up, up), Visibility::Hit::front);
+  EXPECT_EQ(vis.trace({1, 1, 3.5}, up, up), Visibility::Hit::nothing);
+  EXPECT_EQ(vis.trace({1, 1, -0.5}, up, up), Visibility::Hit::back);  // the floor's underside
+}
+
+}  // namespace
+}  // namespace dynrad::rad
