@@ -67,11 +67,12 @@ Visibility::~Visibility() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to) const {
+bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to,
+                          const Vec3d& to_normal) const {
   const Vec3d origin = from + from_normal * epsilon_ - centre_;
-  Vec3d direction = (to - centre_) - origin;
+  Vec3d direction = (to + to_normal * epsilon_ - centre_) - origin;
   const double distance = direction.norm();
-  if (distance <= 2 * epsilon_) return false;
+  if (distance <= epsilon_) return false;
   direction /= distance;
   RTCRay ray;
   ray.org_x = static_cast<float>(origin[0]);
@@ -80,8 +81,8 @@ bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec
   ray.dir_x = static_cast<float>(direction[0]);
   ray.dir_y = static_cast<float>(direction[1]);
   ray.dir_z = static_cast<float>(direction[2]);
-  ray.tnear = static_cast<float>(epsilon_);
-  ray.tfar = static_cast<float>(distance - 2 * epsilon_);  // stop short of the target surface
+  ray.tnear = 0.0f;
+  ray.tfar = static_cast<float>(distance);
   ray.mask = 0xFFFFFFFFu;
   ray.time = 0;
   ray.flags = 0;

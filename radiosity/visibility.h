@@ -23,9 +23,11 @@ class Visibility {
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
 
-  // True when the open segment from `from` (a point on a surface with unit normal
-  // `from_normal`) to `to` (a point on another surface) is blocked.
-  bool occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to) const;
+  // True when the segment from `from` (on a surface with unit normal `from_normal`) to
+  // `to` (on a surface with unit normal `to_normal`) is blocked. Both ends are lifted
+  // off their surfaces along their normals, so a ray that reaches its target at a
+  // grazing angle does not end inside the target's plane.
+  bool occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal) const;
 
   enum class Hit { nothing, front, back };
   // What a ray from `origin` (on a surface with unit normal `normal`) in direction

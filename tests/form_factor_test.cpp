@@ -112,12 +112,15 @@ TEST(Visibility, OccludersBlockAndOpenSpaceDoesNot) {
   Visibility vis(*loaded.mesh);
   const Vec3d up(0, 0, 1);
   // Across the partition: blocked. Along the open side: clear.
-  EXPECT_TRUE(vis.occluded({1.0, 4.5, 0.0}, up, {5.0, 4.5, 3.0}));
-  EXPECT_FALSE(vis.occluded({1.0, 1.5, 0.0}, up, {5.0, 1.5, 3.0}));
+  const Vec3d down(0, 0, -1);
+  EXPECT_TRUE(vis.occluded({1.0, 4.5, 0.0}, up, {5.0, 4.5, 3.0}, down));
+  EXPECT_FALSE(vis.occluded({1.0, 1.5, 0.0}, up, {5.0, 1.5, 3.0}, down));
   // A ray starting on the floor toward the ceiling light is not blocked by the floor
   // itself or by the light it ends on.
-  EXPECT_FALSE(vis.occluded({5.0, 3.0, 0.0}, up, {5.0, 3.0, 3.0}));
-  EXPECT_EQ(vis.rays(), 3u);
+  EXPECT_FALSE(vis.occluded({5.0, 3.0, 0.0}, up, {5.0, 3.0, 3.0}, down));
+  // Grazing: from a floor point next to the wall x = 0 to a point on that wall.
+  EXPECT_FALSE(vis.occluded({0.01, 0.5, 0.0}, up, {0.0, 2.5, 0.2}, {1, 0, 0}));
+  EXPECT_EQ(vis.rays(), 4u);
   // Straight up from the floor meets the ceiling's front; from outside the room, nothing.
   EXPECT_EQ(vis.trace({1, 1, 0}, up, up), Visibility::Hit::front);
   EXPECT_EQ(vis.trace({1, 1, 3.5}, up, up), Visibility::Hit::nothing);

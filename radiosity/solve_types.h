@@ -1,0 +1,52 @@
+// Options and results shared by the solvers.
+#pragma once
+
+#include "mesh/types.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace dynrad::rad {
+
+struct SolveOptions {
+  double converge = 0.01;         // stop when unshot power is this fraction of emitted power
+  std::size_t max_iterations = 0;  // stop after this many shots (0: no limit)
+  double time_limit = 0;           // stop after this many seconds (0: no limit)
+  int min_rays = 4;                // visibility rays per receiver and sender, first pass
+  int max_rays = 16;               // added when the first pass finds the sender partly hidden
+  int escape_rays = 1024;          // rays per sender to measure the power it loses to the outside
+  std::uint64_t seed = 1;          // all sampling is seeded: same input, same answer
+  int threads = 0;                 // 0: all cores
+  double crease_angle = 30;        // degrees; see mesh/vertex_split.h
+  // Called at every shot boundary; returning true stops the solve there (signals).
+  std::function<bool()> should_stop;
+  // Called after every shot.
+  std::function<void(std::size_t iteration, double unshot_fraction)> on_shot;
+};
+
+// Power bookkeeping in W per channel (when lengths are metres). After every shot,
+// emitted = absorbed + escaped + unshot, up to rounding.
+struct EnergyBalance {
+  Rgb emitted, absorbed, escaped, unshot;
+};
+
+struct SolveReport {
+  std::string method;
+  std::size_t iterations = 0;
+  std::uint64_t energy_transfers = 0;         // shoot(i, q): sender i to receiving element q
+  std::uint64_t patch_element_transfers = 0;  // the same, to elements below patch level
+  std::uint64_t visibility_rays = 0;
+  std::size_t elements = 0;
+  std::size_t patches = 0;
+  std::size_t receivers = 0;
+  double unshot_fraction = 1;
+  double seconds = 0;
+  std::string stopped_by;  // "converged", "iterations", "time limit", "interrupted"
+  std::vector<double> unshot_history;  // after each shot
+  double form_factor_sum_error = 0;    // mean |1 - sum of receiver form factors| before normalisation
+  EnergyBalance energy;
+};
+
+}  // namespace dynrad::rad
