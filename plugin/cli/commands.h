@@ -14,9 +14,11 @@ using Command = std::function<int()>;
 constexpr int kExitOk = 0;
 constexpr int kExitInternal = 1;  // a bug: please report it
 constexpr int kExitBadInput = 2;  // unusable input, unwritable output, bad options
+constexpr int kExitInterrupted = 3;  // stopped by a signal; the current solution was written
 
 Command add_info_command(CLI::App& app);
 Command add_clean_command(CLI::App& app);
+Command add_solve_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

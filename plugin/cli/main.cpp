@@ -34,13 +34,9 @@ int main(int argc, char** argv) {
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   std::map<CLI::App*, cli::Command> commands;
-  {
-    CLI::App* info = nullptr;
-    auto run = cli::add_info_command(app);
-    info = app.get_subcommands({}).back();
-    commands[info] = run;
-    auto run_clean = cli::add_clean_command(app);
-    commands[app.get_subcommands({}).back()] = run_clean;
+  for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command}) {
+    auto run = add(app);
+    commands[app.get_subcommands({}).back()] = run;
   }
   try {
     app.parse(argc, argv);

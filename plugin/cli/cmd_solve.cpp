@@ -1,0 +1,215 @@
+// `dynrad solve INPUT -o OUT.ply`: light a model and write per-vertex radiosity.
+//
+// Exit codes: 0 the solve stopped by one of its rules (converged, --iterations,
+// --time-limit) and the output is written; 2 bad input, output path or options; 3
+// interrupted (Ctrl-C or SIGTERM): the current solution is written all the same,
+// since progressive refinement is usable at any moment; 1 internal error.
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "plugin/cli/commands.h"
+#include "radiosity/progressive.h"
+#include "radiosity/tonemap.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+namespace dynrad::cli {
+namespace {
+
+struct SolveCliOptions {
+  LoadOptions load;
+  std::string output;
+  std::string report;
+  std::string method = "progressive";
+  double patch_size = 0;  // 0: default for the scene
+  int max_level = -1;     // -1: not given
+  double threshold = -1;  // -1: not given
+  double exposure = 0;    // 0: automatic
+  bool ascii = false;
+  rad::SolveOptions solve;
+};
+
+// First SIGINT/SIGTERM asks the solve to stop at the next shot boundary; the handler
+// then restores the default action, so a second one ends the program at once.
+std::atomic<bool> g_stop_requested{false};
+extern "C" void on_stop_signal(int signal_number) {
+  g_stop_requested.store(true);
+  std::signal(signal_number, SIG_DFL);
+}
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(double converge) : enabled_(::isatty(STDERR_FILENO)), converge_(converge) {}
+  void update(std::size_t shot, double unshot) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (shot > 1 && now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    // Unshot power falls roughly geometrically: progress on a log scale.
+    const double done = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(converge_), 0.0, 1.0);
+    const int width = 30, filled = static_cast<int>(done * width);
+    std::fprintf(stderr, "\r  [%s%s] shot %zu, unshot %.2f%%   ", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '-').c_str(), shot, 100 * unshot);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void finish() {
+    if (drawn_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  double converge_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
+
+int run_solve(SolveCliOptions& options) {
+  if (options.method != "progressive")
+    throw InputError("--method", 0,
+                     "'" + options.method + "' is not a method dynrad has yet; available: progressive.");
+  if (options.max_level >= 0 || options.threshold >= 0)
+    throw InputError("--max-level/--threshold", 0,
+                     "these refine elements during the solve and apply to the adaptive and dynamic methods only; "
+                     "--method progressive shoots to the initial patches.");
+  check_output_writable(options.output);
+  if (!options.report.empty()) check_output_writable(options.report);
+
+  CleanupOptions cleanup;
+  cleanup.merge_tolerance = options.load.merge_tolerance;
+  LoadedScene scene = load_scene(options.load.input, cleanup);
+  for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  SceneMesh& mesh = *scene.mesh;
+  if (!(mesh.emitting_area() > 0))
+    throw InputError(options.load.input, 0,
+                     "no face emits light, so everything would be black. Give a material an emission: Ke in the "
+                     ".mtl file, or \"emission\" in a scene file's materials.");
+  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
+  const PatchingReport patching = make_patches(mesh, patch_size);
+  ElementHierarchy hierarchy(mesh);
+  spdlog::info("{}: {} triangles, {} patches (patch size {:.4g})", options.load.input, patching.faces_before,
+               patching.patches, patch_size);
+
+  ProgressBar bar(options.solve.converge);
+  options.solve.should_stop = [] { return g_stop_requested.load(); };
+  options.solve.on_shot = [&bar](std::size_t shot, double unshot) { bar.update(shot, unshot); };
+  g_stop_requested = false;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  rad::ProgressiveSolver solver(mesh, hierarchy, options.solve);
+  const rad::SolveReport report = solver.run();
+  bar.finish();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+
+  // Output: per-node radiosity, display colours through an exposure.
+  std::vector<char> lit(solver.receivers().size());
+  for (std::size_t x = 0; x < lit.size(); ++x)
+    lit[x] = !mesh.materials()[solver.receivers().material[x]].emits();
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(solver.radiosity(), lit);
+  VertexValues values = rad::tone_map(solver.radiosity(), exposure, "radiosity");
+  WriteOptions write;
+  write.ascii = options.ascii;
+  write_mesh_with_values(options.output, mesh, solver.receivers().split, values, write);
+
+  const auto& e = report.energy;
+  spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, {} visibility rays; exposure {:.4g}", report.iterations,
+               report.seconds, report.stopped_by, 100 * report.unshot_fraction, report.visibility_rays, exposure);
+  spdlog::info("energy: emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
+               e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
+               e.escaped.r + e.escaped.g + e.escaped.b, e.unshot.r + e.unshot.g + e.unshot.b);
+  spdlog::info("wrote {} ({} vertices, {} triangles)", options.output, solver.receivers().size(), mesh.face_count());
+
+  if (!options.report.empty()) {
+    nlohmann::json j;
+    j["dynrad_version"] = DYNRAD_VERSION;
+    j["input"] = options.load.input;
+    j["output"] = options.output;
+    j["method"] = report.method;
+    j["iterations"] = report.iterations;
+    j["energy_transfers"] = report.energy_transfers;
+    j["patch_element_transfers"] = report.patch_element_transfers;
+    j["visibility_rays"] = report.visibility_rays;
+    j["elements"] = report.elements;
+    j["patches"] = report.patches;
+    j["receivers"] = report.receivers;
+    j["unshot_fraction"] = report.unshot_fraction;
+    j["seconds"] = report.seconds;
+    j["stopped_by"] = report.stopped_by;
+    j["unshot_history"] = report.unshot_history;
+    j["form_factor_sum_error"] = report.form_factor_sum_error;
+    j["exposure"] = exposure;
+    j["patch_size"] = patch_size;
+    j["energy"] = {{"emitted", rgb_json(e.emitted)},
+                   {"absorbed", rgb_json(e.absorbed)},
+                   {"escaped", rgb_json(e.escaped)},
+                   {"unshot", rgb_json(e.unshot)}};
+    j["options"] = {{"converge", options.solve.converge},
+                    {"iterations", options.solve.max_iterations},
+                    {"time_limit", options.solve.time_limit},
+                    {"threads", options.solve.threads},
+                    {"seed", options.solve.seed}};
+    AtomicFile file(options.report, std::ios::out);
+    file.stream() << j.dump(2) << "\n";
+    file.commit();
+  }
+  if (report.stopped_by == "interrupted") {
+    spdlog::warn("interrupted: wrote the solution so far, with {:.2f}% of the emitted power not yet shot.",
+                 100 * report.unshot_fraction);
+    return kExitInterrupted;
+  }
+  if (report.stopped_by != "converged")
+    spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", report.stopped_by,
+                 100 * report.unshot_fraction, 100 * options.solve.converge);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_solve_command(CLI::App& app) {
+  auto options = std::make_shared<SolveCliOptions>();
+  CLI::App* command = app.add_subcommand("solve", "Light a model with radiosity and write per-vertex results");
+  add_load_options(*command, options->load);
+  command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
+  command->add_option("--method", options->method, "Solver: progressive")->capture_default_str();
+  command->add_option("--patch-size", options->patch_size,
+                      "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--max-level", options->max_level, "Deepest refinement, in the paper's 1->4 levels (adaptive, dynamic)")
+      ->check(CLI::Range(0, 12));
+  command->add_option("--threshold", options->threshold, "Refinement threshold (adaptive, dynamic)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  command->add_option("--iterations", options->solve.max_iterations, "Stop after this many shots (0: no limit)");
+  command->add_option("--time-limit", options->solve.time_limit, "Stop after this many seconds, writing what there is")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--threads", options->solve.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  command->add_option("--seed", options->solve.seed, "Seed of all ray sampling")->capture_default_str();
+  command->add_option("--report", options->report, "Write a JSON report of the solve here");
+  command->add_option("--exposure", options->exposure,
+                      "Multiply radiosity by this before the sRGB curve (default: automatic)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--crease-angle", options->solve.crease_angle, "Split vertices where faces meet at more than this")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0));
+  command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
+  return [options] { return run_solve(*options); };
+}
+
+}  // namespace dynrad::cli

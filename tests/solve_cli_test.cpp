@@ -1,0 +1,101 @@
+// `dynrad solve` end to end: report contents, refusals, interruption, threads.
+#include "test_support.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace dynrad {
+namespace {
+
+using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// Per-vertex radiosity_g of a written PLY.
+std::vector<float> read_green(const std::string& path) {
+  ReadMesh mesh;
+  OpenMesh::IO::Options io = OpenMesh::IO::Options::Custom;
+  EXPECT_TRUE(OpenMesh::IO::read_mesh(mesh, path, io)) << path;
+  OpenMesh::VPropHandleT<float> g;
+  EXPECT_TRUE(mesh.get_property_handle(g, "radiosity_g")) << path;
+  std::vector<float> out;
+  if (!g.is_valid()) return out;
+  for (auto v : mesh.vertices()) out.push_back(mesh.property(g, v));
+  return out;
+}
+
+TEST(SolveCommand, WritesLitMeshAndReport) {
+  test::TempDir dir;
+  const auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("lit.ply") +
+                                  "' --iterations 40 --report '" + dir.path("report.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(test::read_text(dir.path("report.json")));
+  for (const char* key : {"method", "iterations", "energy_transfers", "patch_element_transfers", "visibility_rays",
+                          "elements", "patches", "unshot_fraction", "seconds", "unshot_history"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["method"], "progressive");
+  EXPECT_EQ(j["iterations"].get<int>(), 40);
+  EXPECT_EQ(j["unshot_history"].size(), 40u);
+  EXPECT_EQ(j["stopped_by"], "iterations");
+  // Unshot power never grows.
+  double previous = 1;
+  for (double u : j["unshot_history"]) {
+    EXPECT_LE(u, previous + 1e-12);
+    previous = u;
+  }
+  const auto green = read_green(dir.path("lit.ply"));
+  ASSERT_FALSE(green.empty());
+  EXPECT_GT(*std::max_element(green.begin(), green.end()), 0.0f);
+  EXPECT_NE(r.output.find("stopped by iterations"), std::string::npos) << r.output;
+}
+
+TEST(SolveCommand, RefusesASceneWithoutLight) {
+  test::TempDir dir;
+  const std::string input = dir.write("dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto r = test::run_dynrad("solve '" + input + "' -o '" + dir.path("out.ply") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("no face emits light"), std::string::npos) << r.output;
+  EXPECT_FALSE(test::file_exists(dir.path("out.ply")));
+}
+
+TEST(SolveCommand, RefusesUnknownMethodsAndOptionsThatDoNotApply) {
+  test::TempDir dir;
+  const std::string in = "'" + test::sample("cornell_box.obj") + "' -o '" + dir.path("out.ply") + "'";
+  auto r = test::run_dynrad("solve " + in + " --method radiant");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("available: progressive"), std::string::npos) << r.output;
+  r = test::run_dynrad("solve " + in + " --max-level 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("adaptive and dynamic"), std::string::npos) << r.output;
+  EXPECT_FALSE(test::file_exists(dir.path("out.ply")));
+}
+
+// Ctrl-C stops at the next shot and still writes a complete, readable file.
+TEST(SolveCommand, InterruptWritesTheCurrentSolution) {
+  test::TempDir dir;
+  const std::string out = dir.path("partial.ply");
+  const std::string command = std::string("( '") + DYNRAD_EXE + "' solve '" + test::sample("globillum_room_obstructed.obj") +
+                              "' -o '" + out + "' --patch-size 0.15 --converge 1e-9 --time-limit 60 & pid=$!; "
+                              "sleep 2; kill -INT $pid; wait $pid; echo exit=$? )";
+  const auto r = test::run_shell(command);
+  EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interrupted"), std::string::npos) << r.output;
+  const auto green = read_green(out);
+  ASSERT_FALSE(green.empty());
+  EXPECT_GT(*std::max_element(green.begin(), green.end()), 0.0f);
+}
+
+TEST(SolveCommand, SameAnswerForOneAndTwoThreads) {
+  test::TempDir dir;
+  const std::string in = "'" + test::sample("globillum_room_obstructed.obj") + "' --iterations 60 --patch-size 0.5";
+  ASSERT_EQ(test::run_dynrad("solve " + in + " --threads 1 -o '" + dir.path("one.ply") + "'").exit_code, 0);
+  ASSERT_EQ(test::run_dynrad("solve " + in + " --threads 2 -o '" + dir.path("two.ply") + "'").exit_code, 0);
+  const auto one = read_green(dir.path("one.ply")), two = read_green(dir.path("two.ply"));
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "vertex " << i;
+}
+
+}  // namespace
+}  // namespace dynrad
