@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
-# README's first command: build, then run dynrad on the bundled Cornell box and write
-# out/cornell_box.ply (open it in MeshLab).
+# README's first command: build, then light the bundled Cornell box with dynrad and
+# write out/cornell_box.ply (open it in MeshLab) and out/cornell_box.json (the report).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 mkdir -p out
-build/plugin/dynrad info samples/cornell_box.obj
-build/plugin/dynrad clean samples/cornell_box.obj -o out/cornell_box.ply
+build/plugin/dynrad solve samples/cornell_box.obj -o out/cornell_box.ply --report out/cornell_box.json
 echo "Open it with: meshlab out/cornell_box.ply"
