@@ -118,3 +118,38 @@ Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal
 }
 
 }  // namespace dynrad::rad
+
+namespace dynrad::rad {
+
+Visibility::Intersection Visibility::intersect(const Vec3d& origin_world, const Vec3d& direction) const {
+  const Vec3d origin = origin_world - centre_;
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin[0]);
+  rh.ray.org_y = static_cast<float>(origin[1]);
+  rh.ray.org_z = static_cast<float>(origin[2]);
+  rh.ray.dir_x = static_cast<float>(direction[0]);
+  rh.ray.dir_y = static_cast<float>(direction[1]);
+  rh.ray.dir_z = static_cast<float>(direction[2]);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.time = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(scene_, &context, &rh);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  Intersection out;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+  out.hit = true;
+  out.face = static_cast<int>(rh.hit.primID);
+  out.u = rh.hit.u;
+  out.v = rh.hit.v;
+  out.distance = rh.ray.tfar;
+  out.front = OpenMesh::dot(face_normals_[rh.hit.primID], direction) < 0;
+  return out;
+}
+
+}  // namespace dynrad::rad

@@ -34,6 +34,16 @@ class Visibility {
   // `direction` meets first: nothing (it leaves the scene), a face's front, or a back.
   Hit trace(const Vec3d& origin, const Vec3d& normal, const Vec3d& direction) const;
 
+  struct Intersection {
+    bool hit = false;
+    bool front = false;   // the ray met the face's front side
+    int face = -1;        // mesh face index
+    double u = 0, v = 0;  // barycentric weights of the face's 2nd and 3rd corners (fv order)
+    double distance = 0;
+  };
+  // First surface along a ray from a free point (a camera), no offsets.
+  Intersection intersect(const Vec3d& origin, const Vec3d& direction) const;
+
   std::uint64_t rays() const { return rays_.load(std::memory_order_relaxed); }
   double epsilon() const { return epsilon_; }
 

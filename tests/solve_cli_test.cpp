@@ -99,3 +99,41 @@ TEST(SolveCommand, SameAnswerForOneAndTwoThreads) {
 
 }  // namespace
 }  // namespace dynrad
+
+#include <png.h>
+
+namespace dynrad {
+namespace {
+
+// Mean of all channels of an 8-bit RGB PNG.
+double mean_brightness(const std::string& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  EXPECT_TRUE(png_image_begin_read_from_file(&image, path.c_str())) << path;
+  image.format = PNG_FORMAT_RGB;
+  std::vector<png_byte> pixels(PNG_IMAGE_SIZE(image));
+  EXPECT_TRUE(png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr));
+  double sum = 0;
+  for (auto p : pixels) sum += p;
+  return pixels.empty() ? 0 : sum / pixels.size();
+}
+
+TEST(SolveCommand, PreviewIsNotBlankAndFollowsTheLight) {
+  test::TempDir dir;
+  // The same box lit at full and at half emission, rendered with one fixed exposure.
+  dir.write("half.json", std::string(R"({"meshes": [{"file": ")") + test::sample("cornell_box.obj") +
+                             R"("}], "materials": {"light": {"emission": [26.7, 18.85, 6.28]}}})");
+  const std::string common = " --iterations 200 --exposure 0.5 --preview-width 160";
+  auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("full.ply") +
+                            "' --preview '" + dir.path("full.png") + "'" + common);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::run_dynrad("solve '" + dir.path("half.json") + "' -o '" + dir.path("half.ply") + "' --preview '" +
+                       dir.path("half.png") + "'" + common);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double full = mean_brightness(dir.path("full.png")), half = mean_brightness(dir.path("half.png"));
+  EXPECT_GT(full, 20.0);        // not blank
+  EXPECT_GT(full, 1.2 * half);  // brighter where the solution is brighter
+}
+
+}  // namespace
+}  // namespace dynrad

@@ -9,6 +9,8 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
+#include "plugin/cli/png.h"
+#include "radiosity/preview.h"
 #include "radiosity/progressive.h"
 #include "radiosity/tonemap.h"
 
@@ -32,6 +34,8 @@ struct SolveCliOptions {
   LoadOptions load;
   std::string output;
   std::string report;
+  std::string preview;
+  int preview_width = 800;
   std::string method = "progressive";
   double patch_size = 0;  // 0: default for the scene
   int max_level = -1;     // -1: not given
@@ -88,6 +92,7 @@ int run_solve(SolveCliOptions& options) {
                      "--method progressive shoots to the initial patches.");
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
+  if (!options.preview.empty()) check_output_writable(options.preview);
 
   CleanupOptions cleanup;
   cleanup.merge_tolerance = options.load.merge_tolerance;
@@ -126,6 +131,15 @@ int run_solve(SolveCliOptions& options) {
   write.ascii = options.ascii;
   write_mesh_with_values(options.output, mesh, solver.receivers().split, values, write);
 
+  if (!options.preview.empty()) {
+    const rad::Visibility visibility(mesh);
+    const rad::Camera camera = rad::default_camera(mesh, visibility);
+    const rad::Image image = rad::render_preview(mesh, solver.receivers(), solver.radiosity(), exposure, camera,
+                                                 options.preview_width, options.preview_width * 3 / 4, visibility);
+    write_png(options.preview, image);
+    spdlog::info("wrote {} (camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, camera.eye[0], camera.eye[1],
+                 camera.eye[2]);
+  }
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, {} visibility rays; exposure {:.4g}", report.iterations,
                report.seconds, report.stopped_by, 100 * report.unshot_fraction, report.visibility_rays, exposure);
@@ -209,6 +223,10 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
   command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
+  command->add_option("--preview", options->preview, "Also render a PNG picture of the result");
+  command->add_option("--preview-width", options->preview_width, "Width of the preview in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192));
   return [options] { return run_solve(*options); };
 }
 
