@@ -81,7 +81,7 @@ Camera default_camera(const SceneMesh& scene, const Visibility& visibility) {
   return best;
 }
 
-Image render_preview(const SceneMesh& scene, const Receivers& receivers, const std::vector<Rgb>& values,
+Image render_preview(const Receivers& receivers, const std::vector<Rgb>& values,
                      double exposure, const Camera& camera, int width, int height, const Visibility& visibility) {
   Image image;
   image.width = width;

@@ -28,7 +28,7 @@ struct Image {
 // else +z.
 Camera default_camera(const SceneMesh& scene, const Visibility& visibility);
 
-Image render_preview(const SceneMesh& scene, const Receivers& receivers, const std::vector<Rgb>& values,
+Image render_preview(const Receivers& receivers, const std::vector<Rgb>& values,
                      double exposure, const Camera& camera, int width, int height, const Visibility& visibility);
 
 }  // namespace dynrad::rad

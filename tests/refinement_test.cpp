@@ -41,7 +41,9 @@ void expect_invariants(const ElementHierarchy& h, double min_angle_floor, const 
     ASSERT_TRUE(el.face.is_valid()) << what;
     ASSERT_EQ(h.element_of(el.face), e) << what;
     faces.insert(el.face.idx());
-    if (el.generation > 0) EXPECT_GE(el.area, h.options().min_area) << what;  // patches may start smaller
+    if (el.generation > 0) {
+      EXPECT_GE(el.area, h.options().min_area) << what;  // patches may start smaller
+    }
     EXPECT_NEAR(el.area, scene.area(el.face), 1e-9 * el.area) << what;
     EXPECT_GE(min_angle_degrees(mesh, el.face), min_angle_floor) << what;
   }

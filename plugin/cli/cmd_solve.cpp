@@ -134,7 +134,7 @@ int run_solve(SolveCliOptions& options) {
   if (!options.preview.empty()) {
     const rad::Visibility visibility(mesh);
     const rad::Camera camera = rad::default_camera(mesh, visibility);
-    const rad::Image image = rad::render_preview(mesh, solver.receivers(), solver.radiosity(), exposure, camera,
+    const rad::Image image = rad::render_preview(solver.receivers(), solver.radiosity(), exposure, camera,
                                                  options.preview_width, options.preview_width * 3 / 4, visibility);
     write_png(options.preview, image);
     spdlog::info("wrote {} (camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, camera.eye[0], camera.eye[1],
