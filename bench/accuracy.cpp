@@ -7,7 +7,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/probe.h"
-#include "radiosity/progressive.h"
+#include "radiosity/solver.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -41,14 +41,15 @@ int main(int argc, char** argv) {
     ElementHierarchy hierarchy(*loaded.mesh);
     rad::SolveOptions options;
     options.converge = converge;
-    rad::ProgressiveSolver solver(*loaded.mesh, hierarchy, options);
+    rad::Solver solver(*loaded.mesh, hierarchy, options);
     const rad::SolveReport report = solver.run();
+    const rad::Solver::Output out = solver.output();
     char line[160];
     std::snprintf(line, sizeof line, "patch size %.3f: %zu patches, %zu shots, %.2f s", size, report.patches,
                   report.iterations, report.seconds);
     timing.push_back(line);
     for (std::size_t i = 0; i < points.size(); ++i) {
-      const auto value = rad::probe(*loaded.mesh, solver.receivers(), solver.radiosity(), points[i].p, points[i].n);
+      const auto value = rad::probe(*loaded.mesh, out.split, out.radiosity, points[i].p, points[i].n);
       table[i].push_back(value ? value->g : -1);
     }
   }

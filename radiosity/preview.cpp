@@ -81,7 +81,7 @@ Camera default_camera(const SceneMesh& scene, const Visibility& visibility) {
   return best;
 }
 
-Image render_preview(const Receivers& receivers, const std::vector<Rgb>& values,
+Image render_preview(const VertexSplit& split, const std::vector<Rgb>& values,
                      double exposure, const Camera& camera, int width, int height, const Visibility& visibility) {
   Image image;
   image.width = width;
@@ -100,8 +100,8 @@ Image render_preview(const Receivers& receivers, const std::vector<Rgb>& values,
         continue;
       }
       const FaceHandle face(hit.face);
-      const Rgb value = values[receivers.node(face, 0)] * (1 - hit.u - hit.v) + values[receivers.node(face, 1)] * hit.u +
-                        values[receivers.node(face, 2)] * hit.v;
+      const Rgb value = values[split.corner[3 * face.idx()]] * (1 - hit.u - hit.v) + values[split.corner[3 * face.idx() + 1]] * hit.u +
+                        values[split.corner[3 * face.idx() + 2]] * hit.v;
       pixel[0] = encode_srgb(value.r * exposure);
       pixel[1] = encode_srgb(value.g * exposure);
       pixel[2] = encode_srgb(value.b * exposure);

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "mesh/scene_mesh.h"
-#include "radiosity/receivers.h"
+#include "mesh/vertex_split.h"
 #include "radiosity/visibility.h"
 
 #include <cstdint>
@@ -28,7 +28,7 @@ struct Image {
 // else +z.
 Camera default_camera(const SceneMesh& scene, const Visibility& visibility);
 
-Image render_preview(const Receivers& receivers, const std::vector<Rgb>& values,
+Image render_preview(const VertexSplit& split, const std::vector<Rgb>& values,
                      double exposure, const Camera& camera, int width, int height, const Visibility& visibility);
 
 }  // namespace dynrad::rad

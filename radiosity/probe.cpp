@@ -4,7 +4,7 @@
 
 namespace dynrad::rad {
 
-std::optional<Rgb> probe(const SceneMesh& scene, const Receivers& receivers, const std::vector<Rgb>& values,
+std::optional<Rgb> probe(const SceneMesh& scene, const VertexSplit& split, const std::vector<Rgb>& values,
                          const Vec3d& point, const Vec3d& normal) {
   const TriMesh& mesh = scene.mesh();
   const double tolerance = 1e-6 * scene.bounds().diagonal();
@@ -24,7 +24,7 @@ std::optional<Rgb> probe(const SceneMesh& scene, const Receivers& receivers, con
     const double slack = tolerance / std::sqrt(std::abs(area));
     if (w[0] < -slack || w[1] < -slack || w[2] < -slack) continue;
     Rgb value;
-    for (int i = 0; i < 3; ++i) value += values[receivers.node(f, i)] * w[i];
+    for (int i = 0; i < 3; ++i) value += values[split.corner[3 * f.idx() + i]] * w[i];
     return value;
   }
   return std::nullopt;

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "mesh/scene_mesh.h"
-#include "radiosity/receivers.h"
+#include "mesh/vertex_split.h"
 
 #include <optional>
 #include <vector>
@@ -13,7 +13,7 @@ namespace dynrad::rad {
 // The radiosity at `point` on the surface whose normal is within 25 degrees of
 // `normal`, or nothing when no such face contains the point (within a tolerance
 // relative to the scene size). Brute force over faces: for reports and tests.
-std::optional<Rgb> probe(const SceneMesh& scene, const Receivers& receivers, const std::vector<Rgb>& values,
+std::optional<Rgb> probe(const SceneMesh& scene, const VertexSplit& split, const std::vector<Rgb>& values,
                          const Vec3d& point, const Vec3d& normal);
 
 }  // namespace dynrad::rad

@@ -11,7 +11,7 @@
 #include "plugin/cli/commands.h"
 #include "plugin/cli/png.h"
 #include "radiosity/preview.h"
-#include "radiosity/progressive.h"
+#include "radiosity/solver.h"
 #include "radiosity/tonemap.h"
 
 #include <fmt/format.h>
@@ -38,8 +38,8 @@ struct SolveCliOptions {
   int preview_width = 800;
   std::string method = "progressive";
   double patch_size = 0;  // 0: default for the scene
-  int max_level = -1;     // -1: not given
-  double threshold = -1;  // -1: not given
+  int max_level = 3;
+  double threshold = -1;  // -1: the method's default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
   rad::SolveOptions solve;
@@ -83,13 +83,20 @@ class ProgressBar {
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 
 int run_solve(SolveCliOptions& options) {
-  if (options.method != "progressive")
-    throw InputError("--method", 0,
-                     "'" + options.method + "' is not a method dynrad has yet; available: progressive.");
-  if (options.max_level >= 0 || options.threshold >= 0)
-    throw InputError("--max-level/--threshold", 0,
-                     "these refine elements during the solve and apply to the adaptive and dynamic methods only; "
-                     "--method progressive shoots to the initial patches.");
+  rad::RefineSettings refine;
+  try {
+    refine.method = rad::parse_method(options.method);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--method", 0, e.what());
+  }
+  refine.max_level = options.max_level;
+  if (refine.method == rad::Method::adaptive)
+    spdlog::warn("--method adaptive is experimental: with refinement it can miss by several percent at vertices "
+                 "created mid-solve; use it to compare with dynamic, not for final results.");
+  if (options.threshold > 0) {
+    refine.adaptive_threshold = options.threshold;
+    refine.dynamic = {options.threshold, options.threshold, options.threshold};
+  }
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
   if (!options.preview.empty()) check_output_writable(options.preview);
@@ -105,7 +112,10 @@ int run_solve(SolveCliOptions& options) {
                      ".mtl file, or \"emission\" in a scene file's materials.");
   const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
   const PatchingReport patching = make_patches(mesh, patch_size);
-  ElementHierarchy hierarchy(mesh);
+  RefinementOptions refinement;
+  // No element below a millionth of the patch area: far below any visible detail.
+  refinement.min_area = 1e-6 * patch_size * patch_size;
+  ElementHierarchy hierarchy(mesh, refinement);
   spdlog::info("{}: {} triangles, {} patches (patch size {:.4g})", options.load.input, patching.faces_before,
                patching.patches, patch_size);
 
@@ -115,26 +125,26 @@ int run_solve(SolveCliOptions& options) {
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  rad::ProgressiveSolver solver(mesh, hierarchy, options.solve);
+  rad::Solver solver(mesh, hierarchy, options.solve, refine);
   const rad::SolveReport report = solver.run();
   bar.finish();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
 
-  // Output: per-node radiosity, display colours through an exposure.
-  std::vector<char> lit(solver.receivers().size());
-  for (std::size_t x = 0; x < lit.size(); ++x)
-    lit[x] = !mesh.materials()[solver.receivers().material[x]].emits();
-  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(solver.radiosity(), lit);
-  VertexValues values = rad::tone_map(solver.radiosity(), exposure, "radiosity");
+  // Output: per-vertex radiosity, display colours through an exposure.
+  const rad::Solver::Output result = solver.output();
+  std::vector<char> lit(result.emitter.size());
+  for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !result.emitter[x];
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(result.radiosity, lit);
+  VertexValues values = rad::tone_map(result.radiosity, exposure, "radiosity");
   WriteOptions write;
   write.ascii = options.ascii;
-  write_mesh_with_values(options.output, mesh, solver.receivers().split, values, write);
+  write_mesh_with_values(options.output, mesh, result.split, values, write);
 
   if (!options.preview.empty()) {
     const rad::Visibility visibility(mesh);
     const rad::Camera camera = rad::default_camera(mesh, visibility);
-    const rad::Image image = rad::render_preview(solver.receivers(), solver.radiosity(), exposure, camera,
+    const rad::Image image = rad::render_preview(result.split, result.radiosity, exposure, camera,
                                                  options.preview_width, options.preview_width * 3 / 4, visibility);
     write_png(options.preview, image);
     spdlog::info("wrote {} (camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, camera.eye[0], camera.eye[1],
@@ -146,7 +156,8 @@ int run_solve(SolveCliOptions& options) {
   spdlog::info("energy: emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
                e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
                e.escaped.r + e.escaped.g + e.escaped.b, e.unshot.r + e.unshot.g + e.unshot.b);
-  spdlog::info("wrote {} ({} vertices, {} triangles)", options.output, solver.receivers().size(), mesh.face_count());
+  spdlog::info("wrote {} ({} vertices, {} triangles, {} elements)", options.output, result.split.size(),
+               mesh.face_count(), hierarchy.element_count());
 
   if (!options.report.empty()) {
     nlohmann::json j;
@@ -161,6 +172,7 @@ int run_solve(SolveCliOptions& options) {
     j["elements"] = report.elements;
     j["patches"] = report.patches;
     j["receivers"] = report.receivers;
+    j["max_level"] = options.max_level;
     j["unshot_fraction"] = report.unshot_fraction;
     j["seconds"] = report.seconds;
     j["stopped_by"] = report.stopped_by;
@@ -199,13 +211,16 @@ Command add_solve_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("solve", "Light a model with radiosity and write per-vertex results");
   add_load_options(*command, options->load);
   command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
-  command->add_option("--method", options->method, "Solver: progressive")->capture_default_str();
+  command->add_option("--method", options->method, "progressive, adaptive (Cohen et al. 1986) or dynamic (Dubuis & Bieri)")
+      ->capture_default_str();
   command->add_option("--patch-size", options->patch_size,
                       "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--max-level", options->max_level, "Deepest refinement, in the paper's 1->4 levels (adaptive, dynamic)")
+  command->add_option("--max-level", options->max_level, "Deepest refinement below a patch, in the paper's 1->4 levels")
+      ->capture_default_str()
       ->check(CLI::Range(0, 12));
-  command->add_option("--threshold", options->threshold, "Refinement threshold (adaptive, dynamic)")
+  command->add_option("--threshold", options->threshold,
+                      "Oracle threshold on relative gradients (default 0.25; dynamic uses it for all three conditions)")
       ->check(CLI::PositiveNumber);
   command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
       ->capture_default_str()

@@ -1,0 +1,46 @@
+// Refinement oracles: the paper's Figure 3 (Adaptive Subdivision, Cohen et al. 1986)
+// and Figure 6 (Dynamic Subdivision, Dubuis & Bieri).
+//
+// All quantities are scale-free (independent of units and of how bright the scene is)
+// and measured on luminance at an element's three corners:
+//
+//   cumulated gradient   (max - min) / max of the cumulated radiosity B, which
+//                        includes the current transfer (without it the first shot
+//                        from a light could never refine anything: before it,
+//                        every surface is black);
+//   current gradient     (max - min) / max of the radiosity dB that the current
+//                        sender alone brings to the corners;
+//   current/cumulated    mean dB / mean B: how much this transfer matters to the
+//                        element's brightness.
+//
+// A value of 0.3 for a gradient means the corners differ by 30% of the brightest.
+#pragma once
+
+#include "mesh/types.h"
+
+#include <array>
+
+namespace dynrad::rad {
+
+struct OracleThresholds {
+  double cumulated_gradient = 0.25;
+  double current_gradient = 0.25;
+  double current_ratio = 0.25;
+};
+
+struct OracleInputs {
+  std::array<Rgb, 3> cumulated;  // B at the corners, current transfer included
+  std::array<Rgb, 3> current;    // dB at the corners from the current sender alone
+};
+
+double cumulated_gradient(const OracleInputs& in);
+double current_gradient(const OracleInputs& in);
+double current_ratio(const OracleInputs& in);
+
+// Figure 3: refine where the cumulated gradient passes the threshold.
+bool adaptive_oracle(const OracleInputs& in, double threshold);
+
+// Figure 6: refine only where all three conditions hold.
+bool dynamic_oracle(const OracleInputs& in, const OracleThresholds& thresholds);
+
+}  // namespace dynrad::rad

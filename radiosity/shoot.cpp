@@ -1,0 +1,149 @@
+// One shot of progressive refinement, for the three methods. The paper's loops:
+//
+//   Figure 1, progressive        Figure 2, adaptive             Figure 5, dynamic
+//   pick brightest patch: i      pick brightest patch: i        pick brightest patch: i
+//   for every patch j            for every element q (leaves)   for every patch j
+//     shoot(i, j)                  shoot(i, q)                    level = 0
+//   update(i)                    update(i)                        do
+//                                for every element q (leaves)       for every element q of j on level
+//                                  if refineOracle(q, thresh)         shoot(i, q)
+//                                    subdivide(q)                     if refineOracle(q, i, thresh)
+//                                    (new elements receive              subdivide(q)
+//                                     this shot again)              level++
+//                                                                 while level < maxLevel
+//                                                               update(i)
+//
+// All three are one walk: each receiving patch's tree is visited level by level from
+// its root. At every visited element q, shoot(i, q) computes the radiosity dB this
+// sender brings to q's corners; the method then decides whether the shot goes on into
+// q's children (subdividing q first if it is a leaf):
+//   progressive never goes on;
+//   adaptive always goes on while q has children (every shot reaches all leaves), and
+//     subdivides a leaf when Figure 3's oracle holds;
+//   dynamic goes on only when Figure 6's oracle holds; where it stops, dB is pushed
+//     down to the elements already below q, linearly interpolated from q's corners
+//     (the paper's "energy transport derivation"), so no rays are spent on them.
+// Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a
+// split is always visited. New elements start from their parent's cumulated radiosity,
+// interpolated from its corners, and then receive this shot like any other.
+//
+// Where the shot stops, element q receives the power dB_i * A_q * mean F(q corners);
+// the reflected part joins its patch's unshot radiosity, area-weighted (eq. 3). Those
+// powers are scaled so that they sum to what the sender can reach (its power times
+// 1 - lost_i, lost_i measured once per patch with rays): averaging F over three corners
+// is not an exact integral. Corner values use the unscaled F, exact at a point.
+//
+// Push-down is lazy: where a shot stops, the elements below q are not touched at once;
+// q keeps the increment and hands it on when a later walk enters q (see flush()).
+//
+// Counting, as the paper does: energy_transfers counts shoot(i, q) where the shot
+// stops, plus, for dynamic, the elements it passes through at whole paper levels (the
+// paper's dynamic shoots to a patch and then to its subpatches); adaptive's interior
+// elements only route the walk to the leaves and are not counted.
+// patch_element_transfers counts those below patch level.
+#include "radiosity/solver.h"
+
+#include <algorithm>
+
+namespace dynrad::rad {
+
+bool Solver::shoot_once() {
+  // pick brightest patch: i
+  const std::uint32_t i = brightest_patch();
+  Patch& sender = patches_[i];
+  const Rgb shot = sender.unshot;
+  if (shot.r + shot.g + shot.b <= 0) return false;
+  sender_ = i;
+  form_factor_.clear();
+  sender.unshot = Rgb();  // update(i): everything it held is shot now
+
+  const int max_generation = 2 * refine_.max_level;
+  std::vector<ElementId> level, next, subdivide, terminals;
+  std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // visited, the shot goes on below
+  // Adaptive: children of a leaf the oracle split in this shot; the walk splits them
+  // again to complete the 1 -> 4 split. (Dynamic needs no marks: it reaches odd
+  // generations only by going on from an even one, so it always completes the split.)
+  std::vector<ElementId> complete_split, complete_split_next;
+  auto count_transfer = [this](const Element& el) {
+    ++report_.energy_transfers;
+    if (el.generation > 0) ++report_.patch_element_transfers;
+  };
+  for (std::uint32_t j = 0; j < patches_.size(); ++j)
+    if (j != i) level.push_back(hierarchy_.patch_root(j));
+
+  while (!level.empty()) {
+    compute_form_factors(level);  // in parallel, for every corner of this level
+    next.clear();
+    subdivide.clear();
+    passed.clear();
+    complete_split_next.clear();
+    for (ElementId q : level) {
+      const Element& el = hierarchy_.element(q);
+      const Patch& patch = patches_[el.patch];
+      // shoot(i, q)
+      OracleInputs in;
+      for (int k = 0; k < 3; ++k) {
+        in.current[k] = patch.reflectance * shot * form_factor(q, k);
+        in.cumulated[k] = value_[q][k] + in.current[k];
+      }
+      const bool can_split = el.generation < max_generation;
+      const bool odd = el.generation % 2 == 1;
+      bool go_on = false;
+      switch (refine_.method) {
+        case Method::progressive:
+          break;
+        case Method::adaptive:
+          go_on = !el.is_leaf() ||
+                  (can_split && (std::binary_search(complete_split.begin(), complete_split.end(), q) ||
+                                 adaptive_oracle(in, refine_.adaptive_threshold)));
+          break;
+        case Method::dynamic:
+          go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
+          if (go_on && !odd) count_transfer(el);  // a whole paper level the shot passes through
+          break;
+      }
+      if (go_on) {
+        flush(q);  // the children must hold what earlier shots pushed down before they are shot
+        passed.emplace_back(q, in.current);
+        if (el.is_leaf()) subdivide.push_back(q);
+      } else {
+        // The shot stops at q: q takes dB, and what is already below q gets it
+        // interpolated from q's corners (push-down) instead of a transfer of its own.
+        value_[q] = in.cumulated;
+        push_down(q, in.current);
+        terminals.push_back(q);
+        count_transfer(el);
+      }
+    }
+    // subdivide(q). New elements start from their parent's values before this shot
+    // (dB is added to the parent below) and receive the shot at the next level.
+    for (ElementId q : subdivide) {
+      const bool starts_split = !std::binary_search(complete_split.begin(), complete_split.end(), q);
+      hierarchy_.refine(q);
+      initialise_new_elements();
+      const Element& el = hierarchy_.element(q);
+      if (refine_.method == Method::adaptive && starts_split && !el.is_leaf())
+        complete_split_next.insert(complete_split_next.end(), el.children.begin(), el.children.end());
+    }
+    for (const auto& [q, current] : passed) {
+      const Element& el = hierarchy_.element(q);
+      for (int k = 0; k < 3; ++k) value_[q][k] += current[k];
+      if (el.is_leaf()) {  // the split was refused (minimum area): the shot stops here
+        terminals.push_back(q);
+        count_transfer(el);
+      } else {
+        next.insert(next.end(), el.children.begin(), el.children.end());
+      }
+    }
+    std::sort(next.begin(), next.end());
+    level.swap(next);
+    std::sort(complete_split_next.begin(), complete_split_next.end());
+    complete_split.swap(complete_split_next);
+  }
+  account_transfers(terminals, i, shot);
+  ++report_.iterations;
+  report_.unshot_history.push_back(unshot_fraction());
+  return true;
+}
+
+}  // namespace dynrad::rad

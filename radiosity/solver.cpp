@@ -1,0 +1,385 @@
+// State and helpers of the solver; the loop itself is in shoot.cpp.
+#include "radiosity/solver.h"
+
+#include "radiosity/form_factor.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace dynrad::rad {
+
+namespace {
+
+// SplitMix64: a small, well-mixed hash; each (receiver, sender) pair draws its own
+// samples whatever thread computes it, so results do not depend on threads.
+std::uint64_t mix(std::uint64_t z) {
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+struct Rng {
+  std::uint64_t state;
+  double uniform() {
+    state = mix(state);
+    return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+// Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of
+// the way off the edges: a point on an edge lies in the neighbouring face's plane, and
+// a ray from there slips out through the seam.
+Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v) {
+  const double s = std::sqrt(u);
+  const Vec3d p = c[0] * (1 - s) + c[1] * (s * (1 - v)) + c[2] * (s * v);
+  const Vec3d centroid = (c[0] + c[1] + c[2]) / 3.0;
+  return p + (centroid - p) * 1e-2;
+}
+
+double sum(const Rgb& c) { return c.r + c.g + c.b; }
+
+// A vertex's form factor depends on its position and its surface's facing only, so it
+// is computed once per vertex and facing, whichever patch asks.
+std::uint64_t key(VertexHandle v, std::uint32_t plane) { return (static_cast<std::uint64_t>(v.idx()) << 32) | plane; }
+
+}  // namespace
+
+Method parse_method(const std::string& name) {
+  if (name == "progressive") return Method::progressive;
+  if (name == "adaptive") return Method::adaptive;
+  if (name == "dynamic") return Method::dynamic;
+  throw std::invalid_argument("'" + name + "' is not a method; available: progressive, adaptive, dynamic");
+}
+
+const char* method_name(Method method) {
+  switch (method) {
+    case Method::progressive: return "progressive";
+    case Method::adaptive: return "adaptive";
+    case Method::dynamic: return "dynamic";
+  }
+  return "?";
+}
+
+Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions options, RefineSettings refine)
+    : scene_(scene), hierarchy_(hierarchy), options_(std::move(options)), refine_(refine) {
+  visibility_ = std::make_unique<Visibility>(scene_);
+  patches_.resize(hierarchy_.patch_count());
+  std::vector<ElementId> leaves;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    const ElementId root = hierarchy_.patch_root(p);
+    const Element& el = hierarchy_.element(root);
+    Patch& patch = patches_[p];
+    for (int k = 0; k < 3; ++k) patch.corners[k] = hierarchy_.position(el.corners[k]);
+    patch.normal = hierarchy_.normal(root);
+    patch.centroid = hierarchy_.centroid(root);
+    patch.area = el.area;
+    for (int k = 0; k < 3; ++k)
+      patch.size = std::max(patch.size, (patch.corners[(k + 1) % 3] - patch.corners[k]).norm());
+    leaves.clear();
+    hierarchy_.leaves(root, leaves);
+    const Material& m = scene_.material(hierarchy_.element(leaves.front()).face);
+    patch.reflectance = m.reflectance;
+    patch.emission = m.emission;
+    patch.unshot = m.emission;
+    report_.energy.emitted += m.emission * patch.area;
+  }
+  emitted_total_ = sum(report_.energy.emitted);
+  if (!(emitted_total_ > 0)) throw std::invalid_argument("no surface emits light");
+  // Facing classes: normals equal to about 1e-9.
+  std::map<std::array<long long, 3>, std::uint32_t> planes;
+  for (Patch& patch : patches_) {
+    const std::array<long long, 3> k{std::llround(patch.normal[0] * 1e9), std::llround(patch.normal[1] * 1e9),
+                                     std::llround(patch.normal[2] * 1e9)};
+    patch.plane = planes.emplace(k, static_cast<std::uint32_t>(planes.size())).first->second;
+  }
+  report_.energy.unshot = report_.energy.emitted;
+  // Every existing element starts at its patch's emission.
+  value_.resize(hierarchy_.element_count());
+  for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
+    const Rgb emission = patches_[hierarchy_.element(e).patch].emission;
+    value_[e] = {emission, emission, emission};
+  }
+  initialised_ = hierarchy_.element_count();
+  pending_.resize(initialised_);
+  report_.method = method_name(refine_.method);
+  report_.patches = patches_.size();
+}
+
+Solver::~Solver() = default;
+
+std::uint32_t Solver::brightest_patch() const {
+  std::uint32_t best = 0;
+  double best_power = -1;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    const double power = sum(patches_[p].unshot) * patches_[p].area;
+    if (power > best_power) {
+      best = p;
+      best_power = power;
+    }
+  }
+  return best;
+}
+
+double Solver::unshot_fraction() const { return sum(report_.energy.unshot) / emitted_total_; }
+
+// Fraction of the power patch `id` shoots that reaches no front face (it leaves the
+// scene or meets a black back side): cosine-weighted rays from points on the patch,
+// stratified over the hemisphere, once per patch. Exactly 0 in a closed room.
+double Solver::lost_fraction(std::uint32_t id) {
+  Patch& p = patches_[id];
+  if (p.lost >= 0) return p.lost;
+  const Vec3d n = p.normal;
+  const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
+  const Vec3d b = OpenMesh::cross(n, t);
+  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
+  Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id))};
+  int escaped = 0, back = 0;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
+      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+      const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+      const Vec3d origin = point_on_triangle(p.corners, rng.uniform(), rng.uniform());
+      const auto hit = visibility_->trace(origin, n, dir);
+      escaped += hit == Visibility::Hit::nothing;
+      back += hit == Visibility::Hit::back;
+    }
+  const double total = static_cast<double>(side) * side;
+  p.escaped = escaped / total;
+  p.lost = (escaped + back) / total;
+  return p.lost;
+}
+
+void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
+  std::vector<std::pair<VertexHandle, std::uint32_t>> todo;  // vertex, a patch that has it
+  for (ElementId e : elements) {
+    const Element& el = hierarchy_.element(e);
+    for (VertexHandle v : el.corners)
+      if (form_factor_.emplace(key(v, patches_[el.patch].plane), CornerFormFactor{}).second)
+        todo.emplace_back(v, el.patch);
+  }
+  std::vector<CornerFormFactor> values(todo.size());
+  const Patch& sender = patches_[sender_];
+  const std::uint32_t sender_id = sender_;
+  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
+    const auto [v, patch_id] = todo[n];
+    const Patch& patch = patches_[patch_id];
+    // The corner a tiny step into its own patch: at a junction, the limit from inside
+    // the surface, and no ray starting in a neighbouring wall's plane.
+    const Vec3d position = hierarchy_.position(v);
+    const Vec3d inward = patch.centroid - position;
+    const double inward_length = inward.norm();
+    const Vec3d x = inward_length > 0 ? position + inward * (1e-3 * patch.size / inward_length) : position;
+    double f = point_to_triangle(x, patch.normal, sender.corners[0], sender.corners[1], sender.corners[2],
+                                 sender.normal);
+    values[n].unoccluded = f;
+    if (f > 0) {
+      // Visible fraction: a few rays first; more only where those disagree.
+      Rng rng{mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id))};
+      int visible = 0, cast = 0;
+      auto pass = [&](int count) {
+        const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))));
+        for (int i = 0; i < side; ++i)
+          for (int j = 0; j < side; ++j) {
+            const Vec3d target =
+                point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
+            visible += !visibility_->occluded(x, patch.normal, target, sender.normal);
+            ++cast;
+          }
+      };
+      pass(options_.min_rays);
+      if (visible != 0 && visible != cast) pass(options_.max_rays);
+      f *= static_cast<double>(visible) / cast;
+    }
+    values[n].visible = f;
+  });
+  for (std::size_t n = 0; n < todo.size(); ++n)
+    form_factor_[key(todo[n].first, patches_[todo[n].second].plane)] = values[n];
+}
+
+double Solver::form_factor(ElementId e, int corner) const {
+  const Element& el = hierarchy_.element(e);
+  return form_factor_.at(key(el.corners[corner], patches_[el.patch].plane)).visible;
+}
+
+// Mean form factor over element q, for the power it receives. The three corner values
+// alone misjudge elements next to the sender's edge, where F changes fastest, the
+// same way at every scale; Lambert's closed form at the centroid (no rays: scaled by
+// the corners' visible fractions) gives the integral a second, interior sample.
+double Solver::element_form_factor(ElementId q) const {
+  const Element& el = hierarchy_.element(q);
+  const Patch& sender = patches_[sender_];
+  double corners = 0, unoccluded = 0;
+  for (int k = 0; k < 3; ++k) {
+    const CornerFormFactor& f = form_factor_.at(key(el.corners[k], patches_[el.patch].plane));
+    corners += f.visible;
+    unoccluded += f.unoccluded;
+  }
+  const double visible = unoccluded > 0 ? std::min(1.0, corners / unoccluded) : 0.0;
+  const double centre = point_to_triangle(hierarchy_.centroid(q), hierarchy_.normal(q), sender.corners[0],
+                                          sender.corners[1], sender.corners[2], sender.normal) * visible;
+  return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
+}
+
+Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const {
+  const Element& el = hierarchy_.element(e);
+  const Vec3d& n = hierarchy_.normal(e);
+  Vec3d c[3];
+  for (int k = 0; k < 3; ++k) c[k] = hierarchy_.position(el.corners[k]);
+  const double area = OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), n);
+  Rgb out;
+  for (int k = 0; k < 3; ++k) {
+    const double w = OpenMesh::dot(OpenMesh::cross(c[(k + 1) % 3] - point, c[(k + 2) % 3] - point), n) / area;
+    out += at_corners[k] * w;
+  }
+  return out;
+}
+
+void Solver::initialise_new_elements() {
+  const std::size_t count = hierarchy_.element_count();
+  value_.resize(count);
+  pending_.resize(count);
+  // Parents come before their children, so one pass in id order suffices.
+  for (ElementId e = static_cast<ElementId>(initialised_); e < count; ++e) {
+    const Element& el = hierarchy_.element(e);
+    for (int k = 0; k < 3; ++k) value_[e][k] = interpolate(el.parent, value_[el.parent], hierarchy_.position(el.corners[k]));
+  }
+  initialised_ = count;
+}
+
+void Solver::push_down(ElementId q, const std::array<Rgb, 3>& delta) {
+  if (hierarchy_.element(q).is_leaf()) return;
+  for (int k = 0; k < 3; ++k) pending_[q][k] += delta[k];
+}
+
+void Solver::flush(ElementId q) {
+  const Element& el = hierarchy_.element(q);
+  if (el.is_leaf()) return;
+  std::array<Rgb, 3>& pending = pending_[q];
+  if (pending[0].is_zero() && pending[1].is_zero() && pending[2].is_zero()) return;
+  for (ElementId c : el.children) {
+    const Element& child = hierarchy_.element(c);
+    std::array<Rgb, 3> delta;
+    for (int k = 0; k < 3; ++k) delta[k] = interpolate(q, pending, hierarchy_.position(child.corners[k]));
+    for (int k = 0; k < 3; ++k) value_[c][k] += delta[k];
+    push_down(c, delta);
+  }
+  pending = {};
+}
+
+void Solver::flush_all() {
+  std::vector<ElementId> stack;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) stack.push_back(hierarchy_.patch_root(p));
+  while (!stack.empty()) {
+    const ElementId e = stack.back();
+    stack.pop_back();
+    flush(e);
+    const Element& el = hierarchy_.element(e);
+    if (!el.is_leaf()) stack.insert(stack.end(), el.children.begin(), el.children.end());
+  }
+}
+
+// Energy of one shot, from the elements where it stopped. See shoot.cpp for why the
+// element powers are normalised.
+void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uint32_t sender_id,
+                               const Rgb& shot_radiosity) {
+  Patch& sender = patches_[sender_id];
+  const double lost = lost_fraction(sender_id);
+  std::vector<double> reach(terminals.size());
+  double received = 0;
+  for (std::size_t t = 0; t < terminals.size(); ++t) reach[t] = element_form_factor(terminals[t]) * hierarchy_.element(terminals[t]).area;
+  for (double r : reach) received += r;
+  const double reachable = sender.area * (1 - lost);
+  double scale = 0;
+  if (received > 0 && reachable > 0) {
+    scale = reachable / received;
+    form_factor_error_sum_ += std::abs(1 - received / reachable);
+  }
+  Rgb incident_total;
+  for (std::size_t t = 0; t < terminals.size(); ++t) {
+    if (reach[t] <= 0) continue;
+    Patch& receiver = patches_[hierarchy_.element(terminals[t]).patch];
+    const Rgb incident = shot_radiosity * (reach[t] * scale);
+    const Rgb reflected = receiver.reflectance * incident;
+    receiver.unshot += reflected * (1.0 / receiver.area);  // eq. 3: area-weighted pull-up
+    report_.energy.absorbed += incident - reflected;
+    incident_total += incident;
+  }
+  // What no front face received: out of the scene, or onto black back faces. In a
+  // closed scene only rounding is left; it is booked as absorbed.
+  const Rgb not_received = shot_radiosity * sender.area - incident_total;
+  const double escaped_share = lost > 0 ? sender.escaped / lost : 0.0;
+  report_.energy.escaped += not_received * escaped_share;
+  report_.energy.absorbed += not_received * (1 - escaped_share);
+  Rgb unshot;
+  for (const Patch& p : patches_) unshot += p.unshot * p.area;
+  report_.energy.unshot = unshot;
+}
+
+Solver::Output Solver::output() {
+  flush_all();
+  Output out;
+  out.split = split_vertices(scene_, options_.crease_angle);
+  out.radiosity.assign(out.split.size(), Rgb());
+  out.emitter.assign(out.split.size(), 0);
+  std::vector<int> count(out.split.size(), 0);
+  const TriMesh& mesh = scene_.mesh();
+  for (auto f : mesh.faces()) {
+    const ElementId e = hierarchy_.element_of(f);
+    const Element& el = hierarchy_.element(e);
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) {
+      const auto node = out.split.corner[3 * f.idx() + k++];
+      for (int j = 0; j < 3; ++j)
+        if (el.corners[j] == v) out.radiosity[node] += value_[e][j];
+      ++count[node];
+      out.emitter[node] = scene_.material(f).emits();
+    }
+  }
+  for (std::size_t i = 0; i < count.size(); ++i)
+    if (count[i] > 0) out.radiosity[i] = out.radiosity[i] * (1.0 / count[i]);
+  return out;
+}
+
+SolveReport Solver::run() {
+  using Clock = std::chrono::steady_clock;
+  std::unique_ptr<tbb::global_control> threads;
+  if (options_.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                    static_cast<std::size_t>(options_.threads));
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  report_.stopped_by = "converged";
+  while (true) {
+    if (unshot_fraction() <= options_.converge) break;
+    if (options_.max_iterations > 0 && report_.iterations >= options_.max_iterations) {
+      report_.stopped_by = "iterations";
+      break;
+    }
+    if (options_.time_limit > 0 && elapsed() >= options_.time_limit) {
+      report_.stopped_by = "time limit";
+      break;
+    }
+    if (options_.should_stop && options_.should_stop()) {
+      report_.stopped_by = "interrupted";
+      break;
+    }
+    if (!shoot_once()) break;
+    if (options_.on_shot) options_.on_shot(report_.iterations, unshot_fraction());
+  }
+  report_.seconds = elapsed();
+  report_.unshot_fraction = unshot_fraction();
+  report_.elements = hierarchy_.element_count();
+  report_.receivers = scene_.vertex_count();
+  report_.visibility_rays = visibility_->rays();
+  report_.form_factor_sum_error = report_.iterations ? form_factor_error_sum_ / report_.iterations : 0;
+  return report_;
+}
+
+}  // namespace dynrad::rad

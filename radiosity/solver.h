@@ -1,0 +1,115 @@
+// The radiosity solver: progressive refinement (Cohen et al. 1988) with no refinement,
+// with Adaptive Subdivision (Cohen et al. 1986; the paper's Figure 2) or with Dynamic
+// Subdivision (Dubuis & Bieri; Figures 5 and 6). The loop is in shoot.cpp, the oracles
+// in oracle.cpp; this class holds the state they share.
+//
+// State. Every element of the hierarchy, interior ones included, keeps the cumulated
+// radiosity at its three corners. New elements interpolate their parent's corner values
+// (linear across the flat parent, so a midpoint gets the mean of its edge's ends).
+// Patches keep their unshot radiosity. Receivers are the element corners; a corner's
+// form factor to the sender is Lambert's closed form at the corner times the fraction
+// of rays that reach the sender, evaluated once per shot for each vertex and patch.
+#pragma once
+
+#include "mesh/refinement.h"
+#include "mesh/vertex_split.h"
+#include "radiosity/oracle.h"
+#include "radiosity/solve_types.h"
+#include "radiosity/visibility.h"
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace dynrad::rad {
+
+enum class Method { progressive, adaptive, dynamic };
+// "progressive", "adaptive", "dynamic"; throws std::invalid_argument otherwise.
+Method parse_method(const std::string& name);
+const char* method_name(Method method);
+
+struct RefineSettings {
+  Method method = Method::progressive;
+  int max_level = 3;                // paper levels (1 -> 4 splits) below a patch
+  double adaptive_threshold = 0.25; // Figure 3's threshold on the cumulated gradient
+  OracleThresholds dynamic;         // Figure 6's three thresholds
+};
+
+class Solver {
+ public:
+  // Refines `scene` through `hierarchy` as it goes; both must outlive the solver.
+  // Throws std::invalid_argument when nothing emits.
+  Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions options, RefineSettings refine = {});
+  ~Solver();
+
+  SolveReport run();
+  bool shoot_once();  // one shot from the brightest patch; false when nothing is left
+
+  // Per output vertex (see mesh/vertex_split.h) of the current mesh: the mean of the
+  // leaf corner values that meet there.
+  struct Output {
+    VertexSplit split;
+    std::vector<Rgb> radiosity;
+    std::vector<char> emitter;  // the vertex belongs to an emitting surface
+  };
+  Output output();
+
+  const EnergyBalance& energy() const { return report_.energy; }
+  double unshot_fraction() const;
+  const SolveReport& report() const { return report_; }
+  const ElementHierarchy& hierarchy() const { return hierarchy_; }
+
+ private:
+  struct Patch {
+    std::array<Vec3d, 3> corners;
+    Vec3d normal, centroid;
+    double area = 0, size = 0;  // size: longest edge
+    Rgb reflectance, emission, unshot;
+    double lost = -1, escaped = 0;  // see lost_fraction()
+    std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
+  };
+
+  std::uint32_t brightest_patch() const;
+  double lost_fraction(std::uint32_t patch);
+  // Form factors at the corners of `elements` for the current sender, computed in
+  // parallel for every (vertex, patch) not yet known this shot.
+  void compute_form_factors(const std::vector<ElementId>& elements);
+  double form_factor(ElementId e, int corner) const;
+  double element_form_factor(ElementId e) const;
+  // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
+  static constexpr double kCentroidWeight = 0.75;
+  // Corner values for elements created since the last call, from their parents.
+  void initialise_new_elements();
+  // Push-down: dB given at q's corners reaches every element below q, interpolated
+  // linearly. It is lazy (exact, since interpolation is linear): q keeps the sum as
+  // pending, and flush(q) hands it to q's children when the walk enters them.
+  void push_down(ElementId q, const std::array<Rgb, 3>& delta);
+  void flush(ElementId q);
+  void flush_all();
+  Rgb interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const;
+  void account_transfers(const std::vector<ElementId>& terminals, std::uint32_t sender, const Rgb& shot_radiosity);
+
+  SceneMesh& scene_;
+  ElementHierarchy& hierarchy_;
+  SolveOptions options_;
+  RefineSettings refine_;
+  std::unique_ptr<Visibility> visibility_;
+  std::vector<Patch> patches_;
+  std::vector<std::array<Rgb, 3>> value_;    // per element: cumulated radiosity at its corners
+  std::vector<std::array<Rgb, 3>> pending_;  // per element: push-down not yet handed to children
+  std::size_t initialised_ = 0;            // elements with values
+  // This shot: sender and form factors by (vertex, patch).
+  std::uint32_t sender_ = 0;
+  struct CornerFormFactor {
+    double visible = 0, unoccluded = 0;
+  };
+  std::unordered_map<std::uint64_t, CornerFormFactor> form_factor_;
+  double emitted_total_ = 0;
+  double form_factor_error_sum_ = 0;
+  SolveReport report_;
+
+  friend class ShootLoop;
+};
+
+}  // namespace dynrad::rad
