@@ -24,8 +24,10 @@
 //     down to the elements already below q, linearly interpolated from q's corners
 //     (the paper's "energy transport derivation"), so no rays are spent on them.
 // Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a
-// split is always visited. New elements start from their parent's cumulated radiosity,
-// interpolated from its corners, and then receive this shot like any other.
+// split is always visited. In dynamic, new elements start from their parent's cumulated
+// radiosity, interpolated from its corners (Dubuis & Bieri); in adaptive, their values
+// are recalculated from every patch that has shot so far, as Cohen et al. do (and as
+// the paper counts against them). Either way they then receive this shot like any other.
 //
 // Where the shot stops, element q receives the power dB_i * A_q * mean F(q corners);
 // the reflected part joins its patch's unshot radiosity, area-weighted (eq. 3). Those
@@ -54,8 +56,11 @@ bool Solver::shoot_once() {
   const Rgb shot = sender.unshot;
   if (shot.r + shot.g + shot.b <= 0) return false;
   sender_ = i;
+  current_shot_ = shot;
   form_factor_.clear();
   sender.unshot = Rgb();  // update(i): everything it held is shot now
+  // (sender.shot grows only after this shot's walk: elements created during the walk
+  // gather the shots before this one and then receive this one like the rest.)
 
   const int max_generation = 2 * refine_.max_level;
   std::vector<ElementId> level, next, subdivide, terminals;
@@ -82,9 +87,11 @@ bool Solver::shoot_once() {
       const Patch& patch = patches_[el.patch];
       // shoot(i, q)
       OracleInputs in;
+      // An element gathered during this shot already holds this shot's transfer.
+      const bool holds_shot = gathered_in_[q] == report_.iterations + 1;
       for (int k = 0; k < 3; ++k) {
         in.current[k] = patch.reflectance * shot * form_factor(q, k);
-        in.cumulated[k] = value_[q][k] + in.current[k];
+        in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
       }
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
@@ -127,7 +134,8 @@ bool Solver::shoot_once() {
     }
     for (const auto& [q, current] : passed) {
       const Element& el = hierarchy_.element(q);
-      for (int k = 0; k < 3; ++k) value_[q][k] += current[k];
+      if (gathered_in_[q] != report_.iterations + 1)
+        for (int k = 0; k < 3; ++k) value_[q][k] += current[k];
       if (el.is_leaf()) {  // the split was refused (minimum area): the shot stops here
         terminals.push_back(q);
         count_transfer(el);
@@ -141,6 +149,7 @@ bool Solver::shoot_once() {
     complete_split.swap(complete_split_next);
   }
   account_transfers(terminals, i, shot);
+  patches_[i].shot += shot;
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   return true;

@@ -107,6 +107,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
   }
   initialised_ = hierarchy_.element_count();
   pending_.resize(initialised_);
+  gathered_in_.assign(initialised_, 0);
   report_.method = method_name(refine_.method);
   report_.patches = patches_.size();
 }
@@ -157,50 +158,98 @@ double Solver::lost_fraction(std::uint32_t id) {
 }
 
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
-  std::vector<std::pair<VertexHandle, std::uint32_t>> todo;  // vertex, a patch that has it
+  struct Todo {
+    VertexHandle v;
+    Vec3d x, normal;
+    std::uint64_t key;
+  };
+  std::vector<Todo> todo;
   for (ElementId e : elements) {
     const Element& el = hierarchy_.element(e);
-    for (VertexHandle v : el.corners)
-      if (form_factor_.emplace(key(v, patches_[el.patch].plane), CornerFormFactor{}).second)
-        todo.emplace_back(v, el.patch);
+    for (VertexHandle v : el.corners) {
+      const std::uint64_t k = key(v, patches_[el.patch].plane);
+      if (form_factor_.emplace(k, CornerFormFactor{}).second)
+        todo.push_back({v, evaluation_point(v, e), patches_[el.patch].normal, k});
+    }
   }
   std::vector<CornerFormFactor> values(todo.size());
-  const Patch& sender = patches_[sender_];
-  const std::uint32_t sender_id = sender_;
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
-    const auto [v, patch_id] = todo[n];
-    const Patch& patch = patches_[patch_id];
-    // The corner a tiny step into its own patch: at a junction, the limit from inside
-    // the surface, and no ray starting in a neighbouring wall's plane.
-    const Vec3d position = hierarchy_.position(v);
-    const Vec3d inward = patch.centroid - position;
-    const double inward_length = inward.norm();
-    const Vec3d x = inward_length > 0 ? position + inward * (1e-3 * patch.size / inward_length) : position;
-    double f = point_to_triangle(x, patch.normal, sender.corners[0], sender.corners[1], sender.corners[2],
-                                 sender.normal);
-    values[n].unoccluded = f;
-    if (f > 0) {
-      // Visible fraction: a few rays first; more only where those disagree.
-      Rng rng{mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id))};
-      int visible = 0, cast = 0;
-      auto pass = [&](int count) {
-        const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))));
-        for (int i = 0; i < side; ++i)
-          for (int j = 0; j < side; ++j) {
-            const Vec3d target =
-                point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
-            visible += !visibility_->occluded(x, patch.normal, target, sender.normal);
-            ++cast;
-          }
-      };
-      pass(options_.min_rays);
-      if (visible != 0 && visible != cast) pass(options_.max_rays);
-      f *= static_cast<double>(visible) / cast;
-    }
-    values[n].visible = f;
+    values[n].visible = point_form_factor(todo[n].v, todo[n].x, todo[n].normal, sender_, &values[n].unoccluded);
   });
-  for (std::size_t n = 0; n < todo.size(); ++n)
-    form_factor_[key(todo[n].first, patches_[todo[n].second].plane)] = values[n];
+  for (std::size_t n = 0; n < todo.size(); ++n) form_factor_[todo[n].key] = values[n];
+}
+
+const Vec3d& Solver::evaluation_point(VertexHandle v, ElementId e) {
+  const std::uint64_t k = key(v, patches_[hierarchy_.element(e).patch].plane);
+  auto it = evaluation_point_.find(k);
+  if (it == evaluation_point_.end()) {
+    // A step into the element: at a junction, the limit from inside the surface, and no
+    // ray starting in a neighbouring wall's plane.
+    const Vec3d position = hierarchy_.position(v);
+    it = evaluation_point_.emplace(k, position + (hierarchy_.centroid(e) - position) * 1e-2).first;
+  }
+  return it->second;
+}
+
+double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
+                                 double* unoccluded) const {
+  const Patch& sender = patches_[sender_id];
+  double f = point_to_triangle(x, normal, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+  if (unoccluded) *unoccluded = f;
+  if (f <= 0) return 0.0;
+  // Visible fraction: a few rays first; more only where those disagree.
+  Rng rng{mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id))};
+  int visible = 0, cast = 0;
+  auto pass = [&](int count) {
+    const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))));
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        const Vec3d target = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
+        visible += !visibility_->occluded(x, normal, target, sender.normal);
+        ++cast;
+      }
+  };
+  pass(options_.min_rays);
+  if (visible != 0 && visible != cast) pass(options_.max_rays);
+  return f * visible / cast;
+}
+
+void Solver::gather_new_elements(std::size_t first) {
+  // Earlier shots, and the current one (the sender's unshot was moved to current_shot_).
+  std::vector<std::uint32_t> shooters;
+  for (std::uint32_t j = 0; j < patches_.size(); ++j)
+    if (!patches_[j].shot.is_zero() || j == sender_) shooters.push_back(j);
+  auto shot_of = [this](std::uint32_t j) { return j == sender_ ? patches_[j].shot + current_shot_ : patches_[j].shot; };
+  // One gather per new vertex and facing.
+  std::unordered_map<std::uint64_t, std::size_t> index;
+  struct Todo {
+    VertexHandle v;
+    Vec3d x;
+    std::uint32_t patch;
+  };
+  std::vector<Todo> todo;
+  for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
+    const Element& el = hierarchy_.element(e);
+    for (VertexHandle v : el.corners)
+      if (index.emplace(key(v, patches_[el.patch].plane), todo.size()).second)
+        todo.push_back({v, evaluation_point(v, e), el.patch});
+  }
+  std::vector<Rgb> gathered(todo.size());
+  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
+    const std::uint32_t patch_id = todo[n].patch;
+    const Patch& patch = patches_[patch_id];
+    Rgb sum;
+    for (std::uint32_t j : shooters)
+      if (j != patch_id) sum += shot_of(j) * point_form_factor(todo[n].v, todo[n].x, patch.normal, j, nullptr);
+    gathered[n] = patch.emission + patch.reflectance * sum;
+  });
+  for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
+    const Element& el = hierarchy_.element(e);
+    for (int k = 0; k < 3; ++k) value_[e][k] = gathered[index.at(key(el.corners[k], patches_[el.patch].plane))];
+    gathered_in_[e] = report_.iterations + 1;
+    report_.energy_transfers += shooters.size();  // shoot(j, e) for every earlier sender j
+    if (el.generation > 0) report_.patch_element_transfers += shooters.size();
+  }
 }
 
 double Solver::form_factor(ElementId e, int corner) const {
@@ -245,6 +294,12 @@ void Solver::initialise_new_elements() {
   const std::size_t count = hierarchy_.element_count();
   value_.resize(count);
   pending_.resize(count);
+  gathered_in_.resize(count, 0);
+  if (refine_.method == Method::adaptive) {
+    gather_new_elements(initialised_);
+    initialised_ = count;
+    return;
+  }
   // Parents come before their children, so one pass in id order suffices.
   for (ElementId e = static_cast<ElementId>(initialised_); e < count; ++e) {
     const Element& el = hierarchy_.element(e);

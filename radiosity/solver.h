@@ -66,6 +66,7 @@ class Solver {
     Vec3d normal, centroid;
     double area = 0, size = 0;  // size: longest edge
     Rgb reflectance, emission, unshot;
+    Rgb shot;  // radiosity shot so far, in total
     double lost = -1, escaped = 0;  // see lost_fraction()
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
   };
@@ -76,6 +77,21 @@ class Solver {
   // parallel for every (vertex, patch) not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
   double form_factor(ElementId e, int corner) const;
+  // Where a vertex is evaluated for a facing: a hundredth of the way from the vertex to
+  // the centroid of the first element that needed it, then fixed for the whole solve.
+  // At a vertex that is also a sender's corner, F depends on the direction one comes
+  // from; the shares of all senders sum to the right total only if every shot uses the
+  // same point.
+  const Vec3d& evaluation_point(VertexHandle v, ElementId e);
+  // F from evaluation point x (of vertex v, on a surface with normal n) to patch
+  // `sender`: Lambert's closed form times the fraction of seeded rays that arrive.
+  double point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
+                           double* unoccluded) const;
+  // Adaptive subdivision: new elements' corner values gathered from every patch that
+  // has shot, this shot included (the paper: their values "must be recalculated"). They
+  // are stamped so that the walk, if it reaches them in this shot, does not add this
+  // shot again.
+  void gather_new_elements(std::size_t first);
   double element_form_factor(ElementId e) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
@@ -98,13 +114,16 @@ class Solver {
   std::vector<Patch> patches_;
   std::vector<std::array<Rgb, 3>> value_;    // per element: cumulated radiosity at its corners
   std::vector<std::array<Rgb, 3>> pending_;  // per element: push-down not yet handed to children
+  std::vector<std::size_t> gathered_in_;     // per element: shot whose transfer its gather included (+1)
   std::size_t initialised_ = 0;            // elements with values
   // This shot: sender and form factors by (vertex, patch).
   std::uint32_t sender_ = 0;
+  Rgb current_shot_;  // the radiosity the sender shoots in this shot
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
   };
   std::unordered_map<std::uint64_t, CornerFormFactor> form_factor_;
+  std::unordered_map<std::uint64_t, Vec3d> evaluation_point_;  // by (vertex, facing), whole solve
   double emitted_total_ = 0;
   double form_factor_error_sum_ = 0;
   SolveReport report_;

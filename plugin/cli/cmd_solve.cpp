@@ -90,9 +90,6 @@ int run_solve(SolveCliOptions& options) {
     throw InputError("--method", 0, e.what());
   }
   refine.max_level = options.max_level;
-  if (refine.method == rad::Method::adaptive)
-    spdlog::warn("--method adaptive is experimental: with refinement it can miss by several percent at vertices "
-                 "created mid-solve; use it to compare with dynamic, not for final results.");
   if (options.threshold > 0) {
     refine.adaptive_threshold = options.threshold;
     refine.dynamic = {options.threshold, options.threshold, options.threshold};
