@@ -47,6 +47,12 @@ Camera default_camera(const SceneMesh& scene, const Visibility& visibility) {
         up[a] = 1;
       }
   }
+  // Scores count whole patches (faces before refinement), so a refined mesh is judged
+  // like the model it came from.
+  std::uint32_t patch_count = 0;
+  for (auto f : scene.mesh().faces()) patch_count = std::max(patch_count, scene.patch(f) + 1);
+  std::vector<double> patch_area(patch_count, 0.0);
+  for (auto f : scene.mesh().faces()) patch_area[scene.patch(f)] += scene.area(f);
   Camera best;
   double best_score = -1;
   for (int axis = 0; axis < 3; ++axis) {
@@ -59,17 +65,19 @@ Camera default_camera(const SceneMesh& scene, const Visibility& visibility) {
       for (const Vec3d& eye : {outside, near_wall, centre}) {
         Camera c{eye, eye + dir, up, eye == outside ? 40.0 : 70.0};
         const Frame f = frame_of(c);
-        // Score: total area of the distinct front faces the view reaches, so a view
+        // Score: total area of the distinct front patches the view reaches, so a view
         // that takes in the whole room beats one filled by a single wall.
-        std::vector<char> seen(scene.face_count(), 0);
+        std::vector<char> seen(patch_count, 0);
         double score = 0;
         const int n = 48;
         for (int i = 0; i < n; ++i)
           for (int j = 0; j < n; ++j) {
             const auto hit = visibility.intersect(c.eye, ray_direction(f, 4.0 / 3.0, (i + 0.5) / n * 2 - 1, (j + 0.5) / n * 2 - 1));
-            if (!hit.hit || !hit.front || seen[hit.face]) continue;
-            seen[hit.face] = 1;
-            score += scene.area(FaceHandle(hit.face));
+            if (!hit.hit || !hit.front) continue;
+            const std::uint32_t patch = scene.patch(FaceHandle(hit.face));
+            if (seen[patch]) continue;
+            seen[patch] = 1;
+            score += patch_area[patch];
           }
         if (score > best_score) {
           best_score = score;
