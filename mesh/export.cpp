@@ -17,29 +17,40 @@ using OutMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,
                             const VertexValues& values, const WriteOptions& options) {
+  std::vector<Vec3d> positions(split.size());
+  for (std::size_t i = 0; i < split.size(); ++i) positions[i] = scene.mesh().point(split.source[i]);
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  triangles.reserve(scene.face_count());
+  for (auto f : scene.mesh().faces()) {
+    const auto* c = &split.corner[3 * f.idx()];
+    triangles.push_back({c[0], c[1], c[2]});
+  }
+  write_triangles_with_values(path, positions, triangles, values, options);
+}
+
+void write_triangles_with_values(const std::string& path, const std::vector<Vec3d>& positions,
+                                 const std::vector<std::array<std::uint32_t, 3>>& triangles, const VertexValues& values,
+                                 const WriteOptions& options) {
   const std::string ext = detail::extension_of(path);
   if (ext != ".ply" && ext != ".off")
     throw OutputError(path, "unsupported output type '" + ext + "'; use .ply or .off.");
-  const std::size_t n = split.size();
+  const std::size_t n = positions.size();
   if (values.linear.size() != n || values.display.size() != n || values.quality.size() != n)
-    throw std::logic_error("write_mesh_with_values: value arrays do not match the vertex split");
+    throw std::logic_error("write_triangles_with_values: value arrays do not match the vertices");
 
-  // A plain float mesh whose vertices are the split output vertices.
   OutMesh out;
   out.request_vertex_colors();
-  out.reserve(n, 0, scene.face_count());
+  out.reserve(n, 0, triangles.size());
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3d& p = scene.mesh().point(split.source[i]);
+    const Vec3d& p = positions[i];
     auto v = out.add_vertex(OutMesh::Point(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])));
     out.set_color(v, OutMesh::Color(values.display[i][0], values.display[i][1], values.display[i][2]));
   }
-  for (auto f : scene.mesh().faces()) {
-    const auto* c = &split.corner[3 * f.idx()];
-    auto added = out.add_face(OpenMesh::VertexHandle(static_cast<int>(c[0])), OpenMesh::VertexHandle(static_cast<int>(c[1])),
-                              OpenMesh::VertexHandle(static_cast<int>(c[2])));
-    if (!added.is_valid()) throw std::logic_error("write_mesh_with_values: output face rejected by OpenMesh");
+  for (const auto& t : triangles) {
+    auto added = out.add_face(OpenMesh::VertexHandle(static_cast<int>(t[0])), OpenMesh::VertexHandle(static_cast<int>(t[1])),
+                              OpenMesh::VertexHandle(static_cast<int>(t[2])));
+    if (!added.is_valid()) throw std::logic_error("write_triangles_with_values: output face rejected by OpenMesh");
   }
-
   OpenMesh::IO::Options io = OpenMesh::IO::Options::VertexColor;
   OpenMesh::VPropHandleT<float> channel[3];
   OpenMesh::VPropHandleT<float> quality;

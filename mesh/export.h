@@ -26,6 +26,11 @@ struct WriteOptions {
   bool ascii = false;  // PLY only; OFF is always ASCII
 };
 
+// Any triangle mesh given by positions and corner indices, with one value per vertex.
+void write_triangles_with_values(const std::string& path, const std::vector<Vec3d>& positions,
+                                 const std::vector<std::array<std::uint32_t, 3>>& triangles, const VertexValues& values,
+                                 const WriteOptions& options = {});
+
 // Writes atomically (see AtomicFile). Throws OutputError on failure or an unknown
 // extension.
 void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,

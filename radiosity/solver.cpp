@@ -234,6 +234,9 @@ void Solver::gather_new_elements(std::size_t first) {
       if (index.emplace(key(v, patches_[el.patch].plane), todo.size()).second)
         todo.push_back({v, evaluation_point(v, e), el.patch});
   }
+  // Geometry only (sum of F times shot radiosity) is shared by the facing; emission
+  // and reflectance are each element's own (a lamp and the ceiling around it share a
+  // facing and the border vertices).
   std::vector<Rgb> gathered(todo.size());
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
     const std::uint32_t patch_id = todo[n].patch;
@@ -241,11 +244,13 @@ void Solver::gather_new_elements(std::size_t first) {
     Rgb sum;
     for (std::uint32_t j : shooters)
       if (j != patch_id) sum += shot_of(j) * point_form_factor(todo[n].v, todo[n].x, patch.normal, j, nullptr);
-    gathered[n] = patch.emission + patch.reflectance * sum;
+    gathered[n] = sum;
   });
   for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
     const Element& el = hierarchy_.element(e);
-    for (int k = 0; k < 3; ++k) value_[e][k] = gathered[index.at(key(el.corners[k], patches_[el.patch].plane))];
+    const Patch& patch = patches_[el.patch];
+    for (int k = 0; k < 3; ++k)
+      value_[e][k] = patch.emission + patch.reflectance * gathered[index.at(key(el.corners[k], patch.plane))];
     gathered_in_[e] = report_.iterations + 1;
     report_.energy_transfers += shooters.size();  // shoot(j, e) for every earlier sender j
     if (el.generation > 0) report_.patch_element_transfers += shooters.size();

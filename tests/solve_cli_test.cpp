@@ -152,3 +152,42 @@ TEST(SolveCommand, PreviewIsNotBlankAndFollowsTheLight) {
 
 }  // namespace
 }  // namespace dynrad
+
+namespace dynrad {
+namespace {
+
+double relative_rms(const std::string& output) {
+  const auto at = output.find("relative rms");
+  return at == std::string::npos ? -1 : std::atof(output.c_str() + at + 12);
+}
+
+TEST(DiffCommand, ZeroAgainstItselfAndHalfForHalfTheLight) {
+  test::TempDir dir;
+  dir.write("half.json", std::string(R"({"meshes": [{"file": ")") + test::sample("cornell_box.obj") +
+                             R"("}], "materials": {"light": {"emission": [26.7, 18.85, 6.28]}}})");
+  const std::string common = " --iterations 300 --method dynamic --max-level 1";
+  ASSERT_EQ(test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("full.ply") + "'" + common)
+                .exit_code,
+            0);
+  ASSERT_EQ(test::run_dynrad("solve '" + dir.path("half.json") + "' -o '" + dir.path("half.ply") + "'" + common).exit_code,
+            0);
+  const auto same = test::run_dynrad("diff '" + dir.path("full.ply") + "' '" + dir.path("full.ply") + "' -o '" +
+                                     dir.path("same.ply") + "'");
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NEAR(relative_rms(same.output), 0.0, 1e-6) << same.output;
+  EXPECT_NE(same.output.find("0 unmatched"), std::string::npos) << same.output;
+  // Radiosity is linear in emission: halving the light halves every lit value.
+  const auto half = test::run_dynrad("diff '" + dir.path("full.ply") + "' '" + dir.path("half.ply") + "' -o '" +
+                                     dir.path("half_diff.ply") + "'");
+  ASSERT_EQ(half.exit_code, 0) << half.output;
+  EXPECT_NEAR(relative_rms(half.output), 50.0, 10.0) << half.output;
+  EXPECT_TRUE(test::file_exists(dir.path("half_diff.ply")));
+  // Not a lit mesh: a clear refusal.
+  const auto bad = test::run_dynrad("diff '" + test::sample("scene_room/room.off") + "' '" + dir.path("full.ply") +
+                                    "' -o '" + dir.path("x.ply") + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("radiosity_r"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace dynrad

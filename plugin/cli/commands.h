@@ -19,6 +19,7 @@ constexpr int kExitInterrupted = 3;  // stopped by a signal; the current solutio
 Command add_info_command(CLI::App& app);
 Command add_clean_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
+Command add_diff_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {
