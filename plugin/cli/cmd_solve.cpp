@@ -213,7 +213,7 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--patch-size", options->patch_size,
                       "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--max-level", options->max_level, "Deepest refinement below a patch, in the paper's 1->4 levels")
+  command->add_option("--max-level", options->max_level, "1->4 splits allowed below a patch (the paper's level L is --max-level L-1)")
       ->capture_default_str()
       ->check(CLI::Range(0, 12));
   command->add_option("--threshold", options->threshold,

@@ -1,0 +1,140 @@
+// The paper's Tables 1-4 (Dubuis & Bieri), adaptive against dynamic subdivision on our
+// versions of its scenes (samples/paper_*.obj), with the paper's own figures beside.
+//
+// Counts are ours (see radiosity/shoot.cpp for what one transfer is); each row also
+// gives the relative RMS difference between the adaptive and the dynamic solution
+// (B interpolated under A's vertices). Patch size 1.1 m gives the paper's 768 patches
+// for the empty room (848 for the sphere room: the paper's 776 includes a coarser
+// sphere). Levels are printed as the paper numbers them: level 1 is the patches
+// themselves, so the paper's level P is --max-level P-1 (P-1 splits 1 -> 4 below a
+// patch, two bisections each).
+//
+// Usage: bench_paper_tables [table...]   (default: 1 2 3 4)
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/compare.h"
+#include "radiosity/solver.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <set>
+#include <string>
+
+namespace {
+
+using namespace dynrad;
+
+struct Run {
+  std::unique_ptr<LoadedScene> loaded;
+  std::unique_ptr<ElementHierarchy> hierarchy;
+  std::unique_ptr<rad::Solver> solver;
+  rad::SolveReport report;
+  rad::Solver::Output output;
+};
+
+Run solve(const std::string& sample, rad::Method method, int level, std::size_t iterations) {
+  Run run;
+  run.loaded = std::make_unique<LoadedScene>(load_scene(std::string(DYNRAD_SAMPLES_DIR) + "/" + sample));
+  make_patches(*run.loaded->mesh, 1.1);
+  run.hierarchy = std::make_unique<ElementHierarchy>(*run.loaded->mesh);
+  rad::SolveOptions options;
+  options.converge = 0;
+  options.max_iterations = iterations;
+  rad::RefineSettings refine;
+  refine.method = method;
+  refine.max_level = level;
+  run.solver = std::make_unique<rad::Solver>(*run.loaded->mesh, *run.hierarchy, options, refine);
+  run.report = run.solver->run();
+  run.output = run.solver->output();
+  return run;
+}
+
+struct Row {
+  Run adaptive, dynamic;
+  double relative_rms = 0;
+};
+
+Row compare_methods(const std::string& sample, int paper_level, std::size_t iterations) {
+  Row row;
+  row.adaptive = solve(sample, rad::Method::adaptive, paper_level - 1, iterations);
+  row.dynamic = solve(sample, rad::Method::dynamic, paper_level - 1, iterations);
+  const rad::Visibility dynamic_visibility(*row.dynamic.loaded->mesh);
+  row.relative_rms = rad::compare(*row.adaptive.loaded->mesh, row.adaptive.output, *row.dynamic.loaded->mesh,
+                                  row.dynamic.output, dynamic_visibility)
+                         .relative();
+  return row;
+}
+
+double ratio(std::uint64_t a, std::uint64_t b) { return b ? static_cast<double>(a) / b : 0; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::set<int> tables;
+  for (int i = 1; i < argc; ++i) tables.insert(std::atoi(argv[i]));
+  if (tables.empty()) tables = {1, 2, 3, 4};
+
+  if (tables.count(1)) {
+    std::printf("Table 1: sphere room, level 3, transfers by iterations\n");
+    std::printf("%10s %12s %12s %8s %8s | paper: %10s %10s %6s | %6s %6s\n", "iterations", "adaptive", "dynamic",
+                "speedup", "rms diff", "adaptive", "dynamic", "speedup", "sec A", "sec D");
+    const struct {
+      std::size_t n;
+      long pa, pd;
+      double ps;
+    } rows[] = {{1, 4604, 4604, 1.00}, {10, 63440, 19980, 3.18}, {100, 699600, 93108, 7.51}, {1000, 7112000, 792584, 8.97}};
+    for (const auto& r : rows) {
+      const Row row = compare_methods("paper_sphere_room.obj", 3, r.n);
+      std::printf("%10zu %12llu %12llu %8.2f %7.2f%% | paper: %10ld %10ld %6.2f | %6.1f %6.1f\n", r.n,
+                  (unsigned long long)row.adaptive.report.energy_transfers,
+                  (unsigned long long)row.dynamic.report.energy_transfers,
+                  ratio(row.adaptive.report.energy_transfers, row.dynamic.report.energy_transfers), 100 * row.relative_rms,
+                  r.pa, r.pd, r.ps, row.adaptive.report.seconds, row.dynamic.report.seconds);
+      std::fflush(stdout);
+    }
+  }
+  if (tables.count(2)) {
+    std::printf("\nTable 2: sphere room, 100 iterations, by level\n");
+    std::printf("%5s %9s %12s %12s %8s %8s | paper: %6s %10s %10s %6s\n", "level", "elements", "adaptive", "dynamic",
+                "speedup", "rms diff", "elems", "adaptive", "dynamic", "speedup");
+    const struct {
+      int level;
+      long pe, pa, pd;
+      double ps;
+    } rows[] = {{1, 776, 77600, 77600, 1.00}, {2, 2836, 283600, 83176, 3.41}, {3, 6996, 699600, 93108, 7.51},
+                {4, 14936, 1493600, 112624, 13.26}};
+    for (const auto& r : rows) {
+      const Row row = compare_methods("paper_sphere_room.obj", r.level, 100);
+      std::printf("%5d %9zu %12llu %12llu %8.2f %7.2f%% | paper: %6ld %10ld %10ld %6.2f\n", r.level,
+                  row.adaptive.loaded->mesh->face_count(), (unsigned long long)row.adaptive.report.energy_transfers,
+                  (unsigned long long)row.dynamic.report.energy_transfers,
+                  ratio(row.adaptive.report.energy_transfers, row.dynamic.report.energy_transfers), 100 * row.relative_rms,
+                  r.pe, r.pa, r.pd, r.ps);
+      std::fflush(stdout);
+    }
+  }
+  if (tables.count(3) || tables.count(4)) {
+    std::printf("\nTables 3 and 4: empty room, level 4, 1000 iterations\n");
+    std::printf("%9s %12s %12s %8s | %12s %12s %8s %8s | paper: %6s %6s\n", "emitters", "adaptive", "dynamic", "speedup",
+                "pe adaptive", "pe dynamic", "speedup", "rms diff", "T3", "T4");
+    const struct {
+      const char* sample;
+      int emitters;
+      double p3, p4;
+    } rows[] = {{"paper_empty_room_small_source.obj", 2, 12.62, 566}, {"paper_empty_room_front_wall.obj", 128, 8.45, 283}};
+    for (const auto& r : rows) {
+      const Row row = compare_methods(r.sample, 4, 1000);
+      const auto& a = row.adaptive.report;
+      const auto& d = row.dynamic.report;
+      std::printf("%9d %12llu %12llu %8.2f | %12llu %12llu %8.1f %7.2f%% | paper: %6.2f %6.0f\n", r.emitters,
+                  (unsigned long long)a.energy_transfers, (unsigned long long)d.energy_transfers,
+                  ratio(a.energy_transfers, d.energy_transfers), (unsigned long long)a.patch_element_transfers,
+                  (unsigned long long)d.patch_element_transfers, ratio(a.patch_element_transfers, d.patch_element_transfers),
+                  100 * row.relative_rms, r.p3, r.p4);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
