@@ -16,6 +16,25 @@ void embree_error(void* /*user*/, RTCError code, const char* message) {
   spdlog::error("Embree error {}: {}", static_cast<int>(code), message ? message : "");
 }
 
+// A ray from `origin` (already shifted to the scene's centre) along `direction`.
+RTCRayHit make_ray_hit(const Vec3d& origin, const Vec3d& direction, float tnear) {
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin[0]);
+  rh.ray.org_y = static_cast<float>(origin[1]);
+  rh.ray.org_z = static_cast<float>(origin[2]);
+  rh.ray.dir_x = static_cast<float>(direction[0]);
+  rh.ray.dir_y = static_cast<float>(direction[1]);
+  rh.ray.dir_z = static_cast<float>(direction[2]);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.time = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 void check(RTCDevice device, const char* what) {
   const RTCError code = rtcGetDeviceError(device);
   if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree failed while ") + what);
@@ -94,21 +113,7 @@ bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec
 }
 
 Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal, const Vec3d& direction) const {
-  const Vec3d origin = origin_world + normal * epsilon_ - centre_;
-  RTCRayHit rh;
-  rh.ray.org_x = static_cast<float>(origin[0]);
-  rh.ray.org_y = static_cast<float>(origin[1]);
-  rh.ray.org_z = static_cast<float>(origin[2]);
-  rh.ray.dir_x = static_cast<float>(direction[0]);
-  rh.ray.dir_y = static_cast<float>(direction[1]);
-  rh.ray.dir_z = static_cast<float>(direction[2]);
-  rh.ray.tnear = static_cast<float>(epsilon_);
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.time = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = make_ray_hit(origin_world + normal * epsilon_ - centre_, direction, static_cast<float>(epsilon_));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
@@ -122,21 +127,7 @@ Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal
 namespace dynrad::rad {
 
 Visibility::Intersection Visibility::intersect(const Vec3d& origin_world, const Vec3d& direction) const {
-  const Vec3d origin = origin_world - centre_;
-  RTCRayHit rh;
-  rh.ray.org_x = static_cast<float>(origin[0]);
-  rh.ray.org_y = static_cast<float>(origin[1]);
-  rh.ray.org_z = static_cast<float>(origin[2]);
-  rh.ray.dir_x = static_cast<float>(direction[0]);
-  rh.ray.dir_y = static_cast<float>(direction[1]);
-  rh.ray.dir_z = static_cast<float>(direction[2]);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.time = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = make_ray_hit(origin_world - centre_, direction, 0.0f);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
