@@ -3,7 +3,9 @@
 //
 // Counts are ours (see radiosity/shoot.cpp for what one transfer is); each row also
 // gives the relative RMS difference between the adaptive and the dynamic solution
-// (B interpolated under A's vertices). Patch size 1.1 m gives the paper's 768 patches
+// (B interpolated under A's vertices), and each one's relative RMS error against a
+// reference: the same scene with every patch split uniformly to the finest level
+// (paper level 4), the same patches as senders, solved to 0.1% unshot power. Patch size 1.1 m gives the paper's 768 patches
 // for the empty room (848 for the sphere room: the paper's 776 includes a coarser
 // sphere). Levels are printed as the paper numbers them: level 1 is the patches
 // themselves, so the paper's level P is --max-level P-1 (P-1 splits 1 -> 4 below a
@@ -19,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <map>
 #include <set>
 #include <string>
 
@@ -34,17 +37,21 @@ struct Run {
   rad::Solver::Output output;
 };
 
-Run solve(const std::string& sample, rad::Method method, int level, std::size_t iterations) {
+Run solve(const std::string& sample, rad::Method method, int level, std::size_t iterations,
+          double threshold = -1, double converge = 0) {
   Run run;
   run.loaded = std::make_unique<LoadedScene>(load_scene(std::string(DYNRAD_SAMPLES_DIR) + "/" + sample));
   make_patches(*run.loaded->mesh, 1.1);
   run.hierarchy = std::make_unique<ElementHierarchy>(*run.loaded->mesh);
   rad::SolveOptions options;
-  options.converge = 0;
+  options.converge = converge;
   options.max_iterations = iterations;
   rad::RefineSettings refine;
   refine.method = method;
   refine.max_level = level;
+  if (threshold >= 0) refine.adaptive_threshold = threshold;
+  if (std::getenv("DYNRAD_ORACLE") && std::string(std::getenv("DYNRAD_ORACLE")) == "contribution")
+    refine.dynamic.variant = rad::OracleThresholds::Variant::contribution;
   run.solver = std::make_unique<rad::Solver>(*run.loaded->mesh, *run.hierarchy, options, refine);
   run.report = run.solver->run();
   run.output = run.solver->output();
@@ -54,7 +61,28 @@ Run solve(const std::string& sample, rad::Method method, int level, std::size_t 
 struct Row {
   Run adaptive, dynamic;
   double relative_rms = 0;
+  double adaptive_error = 0, dynamic_error = 0;  // against the reference
 };
+
+// Uniform refinement to paper level 4 (adaptive with a zero threshold splits every
+// element at the first shot), converged.
+struct Reference {
+  Run run;
+  std::unique_ptr<rad::Visibility> visibility;
+};
+Reference& reference(const std::string& sample) {
+  static std::map<std::string, Reference> cache;
+  auto it = cache.find(sample);
+  if (it == cache.end()) {
+    Reference r;
+    r.run = solve(sample, rad::Method::adaptive, 3, 0, 0.0, 1e-3);
+    r.visibility = std::make_unique<rad::Visibility>(*r.run.loaded->mesh);
+    std::fprintf(stderr, "reference %s: %zu elements, %zu shots, %.1f s\n", sample.c_str(),
+                 r.run.loaded->mesh->face_count(), r.run.report.iterations, r.run.report.seconds);
+    it = cache.emplace(sample, std::move(r)).first;
+  }
+  return it->second;
+}
 
 Row compare_methods(const std::string& sample, int paper_level, std::size_t iterations) {
   Row row;
@@ -64,6 +92,15 @@ Row compare_methods(const std::string& sample, int paper_level, std::size_t iter
   row.relative_rms = rad::compare(*row.adaptive.loaded->mesh, row.adaptive.output, *row.dynamic.loaded->mesh,
                                   row.dynamic.output, dynamic_visibility)
                          .relative();
+  Reference& ref = reference(sample);
+  // Errors measured at the reference's vertices: the same points for both methods.
+  const rad::Visibility adaptive_visibility(*row.adaptive.loaded->mesh);
+  row.adaptive_error = rad::compare(*ref.run.loaded->mesh, ref.run.output, *row.adaptive.loaded->mesh,
+                                    row.adaptive.output, adaptive_visibility)
+                           .relative();
+  row.dynamic_error = rad::compare(*ref.run.loaded->mesh, ref.run.output, *row.dynamic.loaded->mesh,
+                                   row.dynamic.output, dynamic_visibility)
+                          .relative();
   return row;
 }
 
@@ -78,8 +115,8 @@ int main(int argc, char** argv) {
 
   if (tables.count(1)) {
     std::printf("Table 1: sphere room, level 3, transfers by iterations\n");
-    std::printf("%10s %12s %12s %8s %8s | paper: %10s %10s %6s | %6s %6s\n", "iterations", "adaptive", "dynamic",
-                "speedup", "rms diff", "adaptive", "dynamic", "speedup", "sec A", "sec D");
+    std::printf("%10s %12s %12s %8s %8s %8s %8s | paper: %10s %10s %6s | %6s %6s\n", "iterations", "adaptive",
+                "dynamic", "speedup", "rms diff", "err A", "err D", "adaptive", "dynamic", "speedup", "sec A", "sec D");
     const struct {
       std::size_t n;
       long pa, pd;
@@ -87,18 +124,19 @@ int main(int argc, char** argv) {
     } rows[] = {{1, 4604, 4604, 1.00}, {10, 63440, 19980, 3.18}, {100, 699600, 93108, 7.51}, {1000, 7112000, 792584, 8.97}};
     for (const auto& r : rows) {
       const Row row = compare_methods("paper_sphere_room.obj", 3, r.n);
-      std::printf("%10zu %12llu %12llu %8.2f %7.2f%% | paper: %10ld %10ld %6.2f | %6.1f %6.1f\n", r.n,
+      std::printf("%10zu %12llu %12llu %8.2f %7.2f%% %7.2f%% %7.2f%% | paper: %10ld %10ld %6.2f | %6.1f %6.1f\n", r.n,
                   (unsigned long long)row.adaptive.report.energy_transfers,
                   (unsigned long long)row.dynamic.report.energy_transfers,
                   ratio(row.adaptive.report.energy_transfers, row.dynamic.report.energy_transfers), 100 * row.relative_rms,
-                  r.pa, r.pd, r.ps, row.adaptive.report.seconds, row.dynamic.report.seconds);
+                  100 * row.adaptive_error, 100 * row.dynamic_error, r.pa, r.pd, r.ps, row.adaptive.report.seconds,
+                  row.dynamic.report.seconds);
       std::fflush(stdout);
     }
   }
   if (tables.count(2)) {
     std::printf("\nTable 2: sphere room, 100 iterations, by level\n");
-    std::printf("%5s %9s %12s %12s %8s %8s | paper: %6s %10s %10s %6s\n", "level", "elements", "adaptive", "dynamic",
-                "speedup", "rms diff", "elems", "adaptive", "dynamic", "speedup");
+    std::printf("%5s %9s %12s %12s %8s %8s %8s %8s | paper: %6s %10s %10s %6s\n", "level", "elements", "adaptive",
+                "dynamic", "speedup", "rms diff", "err A", "err D", "elems", "adaptive", "dynamic", "speedup");
     const struct {
       int level;
       long pe, pa, pd;
@@ -107,18 +145,18 @@ int main(int argc, char** argv) {
                 {4, 14936, 1493600, 112624, 13.26}};
     for (const auto& r : rows) {
       const Row row = compare_methods("paper_sphere_room.obj", r.level, 100);
-      std::printf("%5d %9zu %12llu %12llu %8.2f %7.2f%% | paper: %6ld %10ld %10ld %6.2f\n", r.level,
+      std::printf("%5d %9zu %12llu %12llu %8.2f %7.2f%% %7.2f%% %7.2f%% | paper: %6ld %10ld %10ld %6.2f\n", r.level,
                   row.adaptive.loaded->mesh->face_count(), (unsigned long long)row.adaptive.report.energy_transfers,
                   (unsigned long long)row.dynamic.report.energy_transfers,
                   ratio(row.adaptive.report.energy_transfers, row.dynamic.report.energy_transfers), 100 * row.relative_rms,
-                  r.pe, r.pa, r.pd, r.ps);
+                  100 * row.adaptive_error, 100 * row.dynamic_error, r.pe, r.pa, r.pd, r.ps);
       std::fflush(stdout);
     }
   }
   if (tables.count(3) || tables.count(4)) {
     std::printf("\nTables 3 and 4: empty room, level 4, 1000 iterations\n");
-    std::printf("%9s %12s %12s %8s | %12s %12s %8s %8s | paper: %6s %6s\n", "emitters", "adaptive", "dynamic", "speedup",
-                "pe adaptive", "pe dynamic", "speedup", "rms diff", "T3", "T4");
+    std::printf("%9s %12s %12s %8s | %12s %12s %8s %8s %8s %8s | paper: %6s %6s\n", "emitters", "adaptive", "dynamic",
+                "speedup", "pe adaptive", "pe dynamic", "speedup", "rms diff", "err A", "err D", "T3", "T4");
     const struct {
       const char* sample;
       int emitters;
@@ -128,11 +166,11 @@ int main(int argc, char** argv) {
       const Row row = compare_methods(r.sample, 4, 1000);
       const auto& a = row.adaptive.report;
       const auto& d = row.dynamic.report;
-      std::printf("%9d %12llu %12llu %8.2f | %12llu %12llu %8.1f %7.2f%% | paper: %6.2f %6.0f\n", r.emitters,
-                  (unsigned long long)a.energy_transfers, (unsigned long long)d.energy_transfers,
+      std::printf("%9d %12llu %12llu %8.2f | %12llu %12llu %8.1f %7.2f%% %7.2f%% %7.2f%% | paper: %6.2f %6.0f\n",
+                  r.emitters, (unsigned long long)a.energy_transfers, (unsigned long long)d.energy_transfers,
                   ratio(a.energy_transfers, d.energy_transfers), (unsigned long long)a.patch_element_transfers,
                   (unsigned long long)d.patch_element_transfers, ratio(a.patch_element_transfers, d.patch_element_transfers),
-                  100 * row.relative_rms, r.p3, r.p4);
+                  100 * row.relative_rms, 100 * row.adaptive_error, 100 * row.dynamic_error, r.p3, r.p4);
       std::fflush(stdout);
     }
   }

@@ -26,6 +26,13 @@ struct OracleThresholds {
   double cumulated_gradient = 0.25;
   double current_gradient = 0.25;
   double current_ratio = 0.25;
+  // "paper": Figure 6 as published. "contribution": the current transfer's spread
+  // measured against the cumulated brightness, (max dB - min dB) / max B, above
+  // `contribution_gradient`, with the cumulated gradient condition; no share condition.
+  // Many weak senders (a whole emitting wall) each shape an element's shading without
+  // any one of them being a large share of it, which the paper's third condition misses.
+  enum class Variant { paper, contribution } variant = Variant::paper;
+  double contribution_gradient = 0.05;
 };
 
 struct OracleInputs {
@@ -36,6 +43,8 @@ struct OracleInputs {
 double cumulated_gradient(const OracleInputs& in);
 double current_gradient(const OracleInputs& in);
 double current_ratio(const OracleInputs& in);
+// (max dB - min dB) / max B: how much this transfer alone reshapes the element's shading.
+double contribution_gradient(const OracleInputs& in);
 
 // Figure 3: refine where the cumulated gradient passes the threshold.
 bool adaptive_oracle(const OracleInputs& in, double threshold);

@@ -40,6 +40,7 @@ struct SolveCliOptions {
   double patch_size = 0;  // 0: default for the scene
   int max_level = 3;
   double threshold = -1;  // -1: the method's default
+  std::string oracle = "paper";
   double exposure = 0;    // 0: automatic
   bool ascii = false;
   rad::SolveOptions solve;
@@ -92,7 +93,13 @@ int run_solve(SolveCliOptions& options) {
   refine.max_level = options.max_level;
   if (options.threshold > 0) {
     refine.adaptive_threshold = options.threshold;
-    refine.dynamic = {options.threshold, options.threshold, options.threshold};
+    refine.dynamic.cumulated_gradient = refine.dynamic.current_gradient = refine.dynamic.current_ratio =
+        options.threshold;
+  }
+  if (options.oracle == "contribution") {
+    refine.dynamic.variant = rad::OracleThresholds::Variant::contribution;
+  } else if (options.oracle != "paper") {
+    throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: paper, contribution.");
   }
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
@@ -219,6 +226,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--threshold", options->threshold,
                       "Oracle threshold on relative gradients (default 0.25; dynamic uses it for all three conditions)")
       ->check(CLI::PositiveNumber);
+  command->add_option("--oracle", options->oracle,
+                      "Dynamic's refinement oracle: paper (Figure 6) or contribution (see README)")
+      ->capture_default_str();
   command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));

@@ -1,0 +1,46 @@
+// The refinement oracles' scale-free quantities on hand-made corner values.
+#include "radiosity/oracle.h"
+
+#include <gtest/gtest.h>
+
+namespace dynrad::rad {
+namespace {
+
+OracleInputs inputs(double b0, double b1, double b2, double d0, double d1, double d2) {
+  return OracleInputs{{Rgb(b0), Rgb(b1), Rgb(b2)}, {Rgb(d0), Rgb(d1), Rgb(d2)}};
+}
+
+TEST(Oracle, QuantitiesAreScaleFree) {
+  const OracleInputs in = inputs(2, 1, 1, 1, 0.5, 0.5);
+  EXPECT_DOUBLE_EQ(cumulated_gradient(in), 0.5);  // (2 - 1) / 2
+  EXPECT_DOUBLE_EQ(current_gradient(in), 0.5);    // (1 - 0.5) / 1
+  EXPECT_DOUBLE_EQ(current_ratio(in), 0.5);       // mean 2/3 over mean 4/3
+  EXPECT_DOUBLE_EQ(contribution_gradient(in), 0.25);  // (1 - 0.5) / 2
+  // The same picture a thousand times brighter gives the same numbers.
+  const OracleInputs bright = inputs(2000, 1000, 1000, 1000, 500, 500);
+  EXPECT_DOUBLE_EQ(cumulated_gradient(bright), cumulated_gradient(in));
+  EXPECT_DOUBLE_EQ(current_ratio(bright), current_ratio(in));
+  // Black stays black without dividing by zero.
+  EXPECT_EQ(cumulated_gradient(inputs(0, 0, 0, 0, 0, 0)), 0.0);
+  EXPECT_EQ(current_ratio(inputs(0, 0, 0, 0, 0, 0)), 0.0);
+}
+
+TEST(Oracle, DynamicNeedsAllThreeConditions) {
+  const OracleThresholds t;  // 0.25 each
+  EXPECT_TRUE(dynamic_oracle(inputs(2, 1, 1, 1, 0.5, 0.5), t));
+  // Uneven shading, but this sender lights the element evenly: no refinement for it.
+  EXPECT_FALSE(dynamic_oracle(inputs(2, 1, 1, 0.5, 0.5, 0.5), t));
+  // This sender is uneven but contributes little next to what is there already.
+  EXPECT_FALSE(dynamic_oracle(inputs(20, 10, 10, 1, 0.5, 0.5), t));
+  // Even shading: nothing to refine.
+  EXPECT_FALSE(dynamic_oracle(inputs(1, 1, 1, 1, 0.5, 0.5), t));
+  EXPECT_TRUE(adaptive_oracle(inputs(2, 1, 1, 0, 0, 0), 0.25));
+  EXPECT_FALSE(adaptive_oracle(inputs(1.1, 1, 1, 0, 0, 0), 0.25));
+  // The contribution variant refines for a weak but uneven sender.
+  OracleThresholds c;
+  c.variant = OracleThresholds::Variant::contribution;
+  EXPECT_TRUE(dynamic_oracle(inputs(20, 10, 10, 2, 0.5, 0.5), c));  // (2 - 0.5) / 20 = 0.075 > 0.05
+}
+
+}  // namespace
+}  // namespace dynrad::rad
