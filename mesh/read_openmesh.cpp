@@ -287,11 +287,11 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   // OpenMesh prints its own parse complaints; ours below are more specific.
   omerr().disable();
   bool ok = false;
-  if (ext == ".off") {
-    std::istringstream stream(parsed);
-    ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
-  } else {
+  if (ext == ".stl") {
     ok = OpenMesh::IO::IOManager().read(path, importer, options);  // STL needs the file to tell ASCII from binary
+  } else {
+    std::istringstream stream(parsed);  // the text already in memory: no second read from disk
+    ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
   }
   omerr().enable();
   if (importer.overflow)
