@@ -50,8 +50,12 @@ Run solve(const std::string& sample, rad::Method method, int level, std::size_t 
   refine.method = method;
   refine.max_level = level;
   if (threshold >= 0) refine.adaptive_threshold = threshold;
+  // Experiments with the oracle, without rebuilding: DYNRAD_ORACLE=contribution,
+  // DYNRAD_CUMULATED=..., DYNRAD_CONTRIBUTION=... (thresholds; defaults as in oracle.h).
   if (std::getenv("DYNRAD_ORACLE") && std::string(std::getenv("DYNRAD_ORACLE")) == "contribution")
     refine.dynamic.variant = rad::OracleThresholds::Variant::contribution;
+  if (const char* v = std::getenv("DYNRAD_CUMULATED")) refine.dynamic.cumulated_gradient = std::atof(v);
+  if (const char* v = std::getenv("DYNRAD_CONTRIBUTION")) refine.dynamic.contribution_gradient = std::atof(v);
   run.solver = std::make_unique<rad::Solver>(*run.loaded->mesh, *run.hierarchy, options, refine);
   run.report = run.solver->run();
   run.output = run.solver->output();
