@@ -246,9 +246,5 @@ Vec3d ElementHierarchy::centroid(ElementId e) const {
   return (position(el.corners[0]) + position(el.corners[1]) + position(el.corners[2])) / 3.0;
 }
 
-std::size_t ElementHierarchy::bytes() const {
-  return elements_.capacity() * sizeof(Element) + roots_.capacity() * sizeof(ElementId) +
-         normals_.capacity() * sizeof(Vec3d) + scene_.mesh().n_faces() * sizeof(ElementId);
-}
 
 }  // namespace dynrad

@@ -123,11 +123,8 @@ class ElementHierarchy {
 
   const SceneMesh& scene() const { return scene_; }
   const RefinementOptions& options() const { return options_; }
-  // Bytes held by the hierarchy itself (not the mesh), for benchmarks.
-  std::size_t bytes() const;
 
  private:
-  friend class Bisector;
   void on_bisect(FaceHandle half_a0, FaceHandle half_a1, const std::array<VertexHandle, 3>& corners_a0,
                  const std::array<VertexHandle, 3>& corners_a1);
 

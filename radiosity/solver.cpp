@@ -77,10 +77,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     Patch& patch = patches_[p];
     for (int k = 0; k < 3; ++k) patch.corners[k] = hierarchy_.position(el.corners[k]);
     patch.normal = hierarchy_.normal(root);
-    patch.centroid = hierarchy_.centroid(root);
     patch.area = el.area;
-    for (int k = 0; k < 3; ++k)
-      patch.size = std::max(patch.size, (patch.corners[(k + 1) % 3] - patch.corners[k]).norm());
     leaves.clear();
     hierarchy_.leaves(root, leaves);
     const Material& m = scene_.material(hierarchy_.element(leaves.front()).face);

@@ -58,13 +58,12 @@ class Solver {
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
-  const ElementHierarchy& hierarchy() const { return hierarchy_; }
 
  private:
   struct Patch {
     std::array<Vec3d, 3> corners;
-    Vec3d normal, centroid;
-    double area = 0, size = 0;  // size: longest edge
+    Vec3d normal;
+    double area = 0;
     Rgb reflectance, emission, unshot;
     Rgb shot;  // radiosity shot so far, in total
     double lost = -1, escaped = 0;  // see lost_fraction()
@@ -128,7 +127,6 @@ class Solver {
   double form_factor_error_sum_ = 0;
   SolveReport report_;
 
-  friend class ShootLoop;
 };
 
 }  // namespace dynrad::rad

@@ -45,7 +45,6 @@ class Visibility {
   Intersection intersect(const Vec3d& origin, const Vec3d& direction) const;
 
   std::uint64_t rays() const { return rays_.load(std::memory_order_relaxed); }
-  double epsilon() const { return epsilon_; }
 
  private:
   RTCDevice device_ = nullptr;

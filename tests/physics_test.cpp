@@ -66,7 +66,7 @@ Solved prepare(const PolygonSoup& soup, double patch_size, SolveOptions options,
 // Every physics fact holds for every method.
 class Physics : public ::testing::TestWithParam<Method> {};
 INSTANTIATE_TEST_SUITE_P(Methods, Physics, ::testing::Values(Method::progressive, Method::adaptive, Method::dynamic),
-                         [](const auto& info) { return std::string(method_name(info.param)); });
+                         [](const auto& param_info) { return std::string(method_name(param_info.param)); });
 
 // With refinement this also checks that a vertex where a sender's corner meets a
 // crease is evaluated from one fixed point for the whole solve: otherwise the senders'
