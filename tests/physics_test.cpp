@@ -158,7 +158,7 @@ TEST_P(Physics, NoLightThroughAWallSharedByTwoRooms) {
   // wall's face looking into B.
   std::vector<char> room_b(out.split.size(), 0);
   for (auto f : s.scene->mesh().faces()) {
-    const bool b = s.scene->centroid(f)[0] > 1 + 1e-9 || s.scene->normal(f)[0] > 0.5 && s.scene->centroid(f)[0] > 1 - 1e-9;
+    const bool b = s.scene->centroid(f)[0] > 1 + 1e-9 || (s.scene->normal(f)[0] > 0.5 && s.scene->centroid(f)[0] > 1 - 1e-9);
     for (int k = 0; k < 3; ++k) room_b[out.split.corner[3 * f.idx() + k]] |= b;
   }
   for (std::size_t x = 0; x < out.split.size(); ++x) {
