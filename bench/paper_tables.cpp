@@ -24,6 +24,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -37,8 +38,72 @@ struct Run {
   rad::Solver::Output output;
 };
 
+// Dynamic's oracle and new-element rule for a run; defaults as in the solver, or from
+// DYNRAD_ORACLE=paper|contribution, DYNRAD_CUMULATED=c, DYNRAD_CONTRIBUTION=k and
+// DYNRAD_NEW_ELEMENTS=interpolate|constant|gather for experiments without rebuilding.
+struct DynamicSettings {
+  rad::OracleThresholds oracle;
+  rad::RefineSettings::NewElements new_elements = rad::RefineSettings::NewElements::interpolate;
+  std::string name() const {
+    char text[160];
+    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g %s",
+                  oracle.variant == rad::OracleThresholds::Variant::paper ? "paper" : "contribution",
+                  oracle.cumulated_gradient,
+                  oracle.variant == rad::OracleThresholds::Variant::paper ? oracle.current_gradient
+                                                                          : oracle.contribution_gradient,
+                  new_elements == rad::RefineSettings::NewElements::interpolate ? "interpolate"
+                  : new_elements == rad::RefineSettings::NewElements::constant  ? "constant"
+                                                                               : "gather");
+    return text;
+  }
+};
+
+// "variant:c:k:init", any suffix optional.
+DynamicSettings parse_settings(const std::string& spec) {
+  DynamicSettings s;
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t colon = spec.find(':', start);
+    parts.push_back(spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (!parts.empty() && parts[0] == "contribution") s.oracle.variant = rad::OracleThresholds::Variant::contribution;
+  if (parts.size() > 1) s.oracle.cumulated_gradient = std::atof(parts[1].c_str());
+  if (parts.size() > 2) {
+    const double k = std::atof(parts[2].c_str());
+    s.oracle.contribution_gradient = k;
+    if (s.oracle.variant == rad::OracleThresholds::Variant::paper) s.oracle.current_gradient = s.oracle.current_ratio = k;
+  }
+  if (parts.size() > 3)
+    s.new_elements = parts[3] == "constant" ? rad::RefineSettings::NewElements::constant
+                     : parts[3] == "gather" ? rad::RefineSettings::NewElements::gather
+                                            : rad::RefineSettings::NewElements::interpolate;
+  return s;
+}
+
+DynamicSettings settings_from_environment() {
+  const char* oracle = std::getenv("DYNRAD_ORACLE");
+  std::string spec = oracle ? oracle : "paper";
+  DynamicSettings defaults;
+  if (spec == "contribution") defaults.oracle.variant = rad::OracleThresholds::Variant::contribution;
+  const char* c = std::getenv("DYNRAD_CUMULATED");
+  const char* k = std::getenv("DYNRAD_CONTRIBUTION");
+  const char* init = std::getenv("DYNRAD_NEW_ELEMENTS");
+  char text[200];
+  std::snprintf(text, sizeof text, "%s:%s:%s:%s", spec.c_str(),
+                c ? c : std::to_string(defaults.oracle.cumulated_gradient).c_str(),
+                k ? k : std::to_string(defaults.oracle.variant == rad::OracleThresholds::Variant::paper
+                                           ? defaults.oracle.current_gradient
+                                           : defaults.oracle.contribution_gradient)
+                            .c_str(),
+                init ? init : "interpolate");
+  return parse_settings(text);
+}
+
 Run solve(const std::string& sample, rad::Method method, int level, std::size_t iterations,
-          double threshold = -1, double converge = 0) {
+          double threshold = -1, double converge = 0, const DynamicSettings& dynamic = settings_from_environment()) {
   Run run;
   run.loaded = std::make_unique<LoadedScene>(load_scene(std::string(DYNRAD_SAMPLES_DIR) + "/" + sample));
   make_patches(*run.loaded->mesh, 1.1);
@@ -50,12 +115,8 @@ Run solve(const std::string& sample, rad::Method method, int level, std::size_t 
   refine.method = method;
   refine.max_level = level;
   if (threshold >= 0) refine.adaptive_threshold = threshold;
-  // Experiments with the oracle, without rebuilding: DYNRAD_ORACLE=contribution,
-  // DYNRAD_CUMULATED=..., DYNRAD_CONTRIBUTION=... (thresholds; defaults as in oracle.h).
-  if (std::getenv("DYNRAD_ORACLE") && std::string(std::getenv("DYNRAD_ORACLE")) == "contribution")
-    refine.dynamic.variant = rad::OracleThresholds::Variant::contribution;
-  if (const char* v = std::getenv("DYNRAD_CUMULATED")) refine.dynamic.cumulated_gradient = std::atof(v);
-  if (const char* v = std::getenv("DYNRAD_CONTRIBUTION")) refine.dynamic.contribution_gradient = std::atof(v);
+  refine.dynamic = dynamic.oracle;
+  refine.new_elements = dynamic.new_elements;
   run.solver = std::make_unique<rad::Solver>(*run.loaded->mesh, *run.hierarchy, options, refine);
   run.report = run.solver->run();
   run.output = run.solver->output();
@@ -112,7 +173,57 @@ double ratio(std::uint64_t a, std::uint64_t b) { return b ? static_cast<double>(
 
 }  // namespace
 
+// bench_paper_tables sweep ROWS SPEC...: for each row (t1: Table 1 at 1000 iterations;
+// 2, 128: Table 3's rows), adaptive once, then dynamic with each SPEC
+// ("variant:c:k:init", see parse_settings), all against the same reference.
+int sweep(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: bench_paper_tables sweep t1,2,128 SPEC...\n");
+    return 1;
+  }
+  const std::string rows = argv[2];
+  struct Case {
+    const char* key;
+    const char* sample;
+    int level;
+    std::size_t iterations;
+  };
+  const Case cases[] = {{"t1", "paper_sphere_room.obj", 3, 1000},
+                        {"2", "paper_empty_room_small_source.obj", 4, 1000},
+                        {"128", "paper_empty_room_front_wall.obj", 4, 1000}};
+  std::printf("%5s %-36s %12s %9s %8s %8s %8s %8s %6s\n", "row", "dynamic", "transfers", "elements", "speedup",
+              "err A", "err D", "D vs A", "sec");
+  for (const Case& c : cases) {
+    if (("," + rows + ",").find(std::string(",") + c.key + ",") == std::string::npos) continue;
+    Reference& ref = reference(c.sample);
+    Run adaptive = solve(c.sample, rad::Method::adaptive, c.level - 1, c.iterations);
+    const rad::Visibility adaptive_visibility(*adaptive.loaded->mesh);
+    const double error_a = rad::compare(*ref.run.loaded->mesh, ref.run.output, *adaptive.loaded->mesh,
+                                        adaptive.output, adaptive_visibility)
+                               .relative();
+    std::printf("%5s %-36s %12llu %9zu %8s %7.2f%% %8s %8s %6.1f\n", c.key, "(adaptive)",
+                (unsigned long long)adaptive.report.energy_transfers, adaptive.report.elements, "", 100 * error_a, "",
+                "", adaptive.report.seconds);
+    std::fflush(stdout);
+    for (int a = 3; a < argc; ++a) {
+      const DynamicSettings settings = parse_settings(argv[a]);
+      Run dynamic = solve(c.sample, rad::Method::dynamic, c.level - 1, c.iterations, -1, 0, settings);
+      const rad::Visibility dynamic_visibility(*dynamic.loaded->mesh);
+      const double error_d = rad::compare(*ref.run.loaded->mesh, ref.run.output, *dynamic.loaded->mesh,
+                                          dynamic.output, dynamic_visibility)
+                                 .relative();
+      std::printf("%5s %-36s %12llu %9zu %8.2f %7.2f%% %7.2f%% %+7.0f%% %6.1f\n", c.key, settings.name().c_str(),
+                  (unsigned long long)dynamic.report.energy_transfers, dynamic.report.elements,
+                  ratio(adaptive.report.energy_transfers, dynamic.report.energy_transfers), 100 * error_a,
+                  100 * error_d, 100 * (error_d / error_a - 1), dynamic.report.seconds);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "sweep") return sweep(argc, argv);
   std::set<int> tables;
   for (int i = 1; i < argc; ++i) tables.insert(std::atoi(argv[i]));
   if (tables.empty()) tables = {1, 2, 3, 4};

@@ -35,11 +35,18 @@ double contribution_gradient(const OracleInputs& in) {
   return hi_cumulated > 0 ? (hi_current - lo_current) / hi_cumulated : 0.0;
 }
 
+double curvature_gradient(const OracleInputs& in) {
+  const double hi = std::max({in.cumulated[0].luminance(), in.cumulated[1].luminance(), in.cumulated[2].luminance()});
+  return hi > 0 ? in.current_curvature / hi : 0.0;
+}
+
 bool adaptive_oracle(const OracleInputs& in, double threshold) { return cumulated_gradient(in) > threshold; }
 
 bool dynamic_oracle(const OracleInputs& in, const OracleThresholds& t) {
   if (t.variant == OracleThresholds::Variant::contribution)
-    return cumulated_gradient(in) > t.cumulated_gradient && contribution_gradient(in) > t.contribution_gradient;
+    return (cumulated_gradient(in) > t.cumulated_gradient &&       // the element's shading is uneven
+            contribution_gradient(in) > t.contribution_gradient) ||  // and this sender's part of it is,
+           curvature_gradient(in) > t.contribution_gradient;         // or dB bends where push-down is linear.
   return cumulated_gradient(in) > t.cumulated_gradient &&  // the element's shading is uneven,
          current_gradient(in) > t.current_gradient &&      // this sender is what makes it uneven,
          current_ratio(in) > t.current_ratio;              // and this sender matters to it.

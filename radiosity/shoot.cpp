@@ -95,6 +95,9 @@ bool Solver::shoot_once() {
       }
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
+      if (refine_.method == Method::dynamic && can_split && !odd &&
+          refine_.dynamic.variant == OracleThresholds::Variant::contribution)
+        in.current_curvature = current_curvature(q, in.current, patch.reflectance);
       bool go_on = false;
       switch (refine_.method) {
         case Method::progressive:

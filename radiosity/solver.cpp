@@ -278,6 +278,29 @@ double Solver::element_form_factor(ElementId q) const {
   return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
 }
 
+double Solver::current_curvature(ElementId q, const std::array<Rgb, 3>& current, const Rgb& reflectance) const {
+  const Element& el = hierarchy_.element(q);
+  const Patch& sender = patches_[sender_];
+  const Vec3d& n = hierarchy_.normal(q);
+  const Vec3d centroid = hierarchy_.centroid(q);
+  const double shot = (reflectance * current_shot_).luminance();
+  if (!(shot > 0)) return 0.0;
+  double worst = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    const CornerFormFactor& fa = form_factor_.at(key(el.corners[k], patches_[el.patch].plane));
+    const CornerFormFactor& fb = form_factor_.at(key(el.corners[l], patches_[el.patch].plane));
+    const double unoccluded = fa.unoccluded + fb.unoccluded;
+    const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
+    Vec3d mid = (hierarchy_.position(el.corners[k]) + hierarchy_.position(el.corners[l])) * 0.5;
+    mid += (centroid - mid) * 1e-2;  // inside q, as evaluation points are
+    const double f =
+        point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal) * visible;
+    worst = std::max(worst, std::abs(shot * f - 0.5 * (current[k].luminance() + current[l].luminance())));
+  }
+  return worst;
+}
+
 Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const {
   const Element& el = hierarchy_.element(e);
   const Vec3d& n = hierarchy_.normal(e);
@@ -297,7 +320,7 @@ void Solver::initialise_new_elements() {
   value_.resize(count);
   pending_.resize(count);
   gathered_in_.resize(count, 0);
-  if (refine_.method == Method::adaptive) {
+  if (refine_.method == Method::adaptive || refine_.new_elements == RefineSettings::NewElements::gather) {
     gather_new_elements(initialised_);
     initialised_ = count;
     return;
@@ -305,7 +328,14 @@ void Solver::initialise_new_elements() {
   // Parents come before their children, so one pass in id order suffices.
   for (ElementId e = static_cast<ElementId>(initialised_); e < count; ++e) {
     const Element& el = hierarchy_.element(e);
-    for (int k = 0; k < 3; ++k) value_[e][k] = interpolate(el.parent, value_[el.parent], hierarchy_.position(el.corners[k]));
+    if (refine_.new_elements == RefineSettings::NewElements::constant) {
+      const auto& p = value_[el.parent];
+      const Rgb mean = (p[0] + p[1] + p[2]) * (1.0 / 3);
+      value_[e] = {mean, mean, mean};
+    } else {
+      for (int k = 0; k < 3; ++k)
+        value_[e][k] = interpolate(el.parent, value_[el.parent], hierarchy_.position(el.corners[k]));
+    }
   }
   initialised_ = count;
 }

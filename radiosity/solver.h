@@ -34,6 +34,11 @@ struct RefineSettings {
   int max_level = 3;                // paper levels (1 -> 4 splits) below a patch
   double adaptive_threshold = 0.25; // Figure 3's threshold on the cumulated gradient
   OracleThresholds dynamic;         // Figure 6's three thresholds
+  // Dynamic: where new elements' cumulated radiosity comes from. "interpolate" (the
+  // default) is linear across the parent from its corners; "constant" gives every
+  // corner the parent's mean; "gather" recalculates them from every earlier sender as
+  // adaptive does (for measurements: it costs a transfer per sender).
+  enum class NewElements { interpolate, constant, gather } new_elements = NewElements::interpolate;
 };
 
 class Solver {
@@ -92,6 +97,8 @@ class Solver {
   // shot again.
   void gather_new_elements(std::size_t first);
   double element_form_factor(ElementId e) const;
+  // OracleInputs::current_curvature for element q and this shot's dB at its corners.
+  double current_curvature(ElementId q, const std::array<Rgb, 3>& current, const Rgb& reflectance) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
   // Corner values for elements created since the last call, from their parents.
