@@ -39,18 +39,19 @@ struct Run {
 };
 
 // Dynamic's oracle and new-element rule for a run; defaults as in the solver, or from
-// DYNRAD_ORACLE=paper|contribution, DYNRAD_CUMULATED=c, DYNRAD_CONTRIBUTION=k and
+// DYNRAD_ORACLE=paper|pushdown, DYNRAD_CUMULATED=c, DYNRAD_PUSHDOWN=k and
 // DYNRAD_NEW_ELEMENTS=interpolate|constant|gather for experiments without rebuilding.
 struct DynamicSettings {
   rad::OracleThresholds oracle;
   rad::RefineSettings::NewElements new_elements = rad::RefineSettings::NewElements::interpolate;
   std::string name() const {
     char text[160];
-    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g %s",
-                  oracle.variant == rad::OracleThresholds::Variant::paper ? "paper" : "contribution",
+    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g f=%.3g %s",
+                  oracle.variant == rad::OracleThresholds::Variant::paper ? "paper" : "pushdown",
                   oracle.cumulated_gradient,
                   oracle.variant == rad::OracleThresholds::Variant::paper ? oracle.current_gradient
-                                                                          : oracle.contribution_gradient,
+                                                                          : oracle.pushdown,
+                  oracle.pushdown_floor,
                   new_elements == rad::RefineSettings::NewElements::interpolate ? "interpolate"
                   : new_elements == rad::RefineSettings::NewElements::constant  ? "constant"
                                                                                : "gather");
@@ -58,7 +59,7 @@ struct DynamicSettings {
   }
 };
 
-// "variant:c:k:init", any suffix optional.
+// "variant:c:k:floor:init", any suffix optional.
 DynamicSettings parse_settings(const std::string& spec) {
   DynamicSettings s;
   std::vector<std::string> parts;
@@ -69,16 +70,17 @@ DynamicSettings parse_settings(const std::string& spec) {
     if (colon == std::string::npos) break;
     start = colon + 1;
   }
-  if (!parts.empty() && parts[0] == "contribution") s.oracle.variant = rad::OracleThresholds::Variant::contribution;
+  if (!parts.empty() && parts[0] == "pushdown") s.oracle.variant = rad::OracleThresholds::Variant::pushdown;
   if (parts.size() > 1) s.oracle.cumulated_gradient = std::atof(parts[1].c_str());
   if (parts.size() > 2) {
     const double k = std::atof(parts[2].c_str());
-    s.oracle.contribution_gradient = k;
+    s.oracle.pushdown = k;
     if (s.oracle.variant == rad::OracleThresholds::Variant::paper) s.oracle.current_gradient = s.oracle.current_ratio = k;
   }
-  if (parts.size() > 3)
-    s.new_elements = parts[3] == "constant" ? rad::RefineSettings::NewElements::constant
-                     : parts[3] == "gather" ? rad::RefineSettings::NewElements::gather
+  if (parts.size() > 3) s.oracle.pushdown_floor = std::atof(parts[3].c_str());
+  if (parts.size() > 4)
+    s.new_elements = parts[4] == "constant" ? rad::RefineSettings::NewElements::constant
+                     : parts[4] == "gather" ? rad::RefineSettings::NewElements::gather
                                             : rad::RefineSettings::NewElements::interpolate;
   return s;
 }
@@ -87,18 +89,19 @@ DynamicSettings settings_from_environment() {
   const char* oracle = std::getenv("DYNRAD_ORACLE");
   std::string spec = oracle ? oracle : "paper";
   DynamicSettings defaults;
-  if (spec == "contribution") defaults.oracle.variant = rad::OracleThresholds::Variant::contribution;
+  if (spec == "pushdown") defaults.oracle.variant = rad::OracleThresholds::Variant::pushdown;
   const char* c = std::getenv("DYNRAD_CUMULATED");
-  const char* k = std::getenv("DYNRAD_CONTRIBUTION");
+  const char* k = std::getenv("DYNRAD_PUSHDOWN");
   const char* init = std::getenv("DYNRAD_NEW_ELEMENTS");
   char text[200];
-  std::snprintf(text, sizeof text, "%s:%s:%s:%s", spec.c_str(),
+  const char* floor = std::getenv("DYNRAD_PUSHDOWN_FLOOR");
+  std::snprintf(text, sizeof text, "%s:%s:%s:%s:%s", spec.c_str(),
                 c ? c : std::to_string(defaults.oracle.cumulated_gradient).c_str(),
                 k ? k : std::to_string(defaults.oracle.variant == rad::OracleThresholds::Variant::paper
                                            ? defaults.oracle.current_gradient
-                                           : defaults.oracle.contribution_gradient)
+                                           : defaults.oracle.pushdown)
                             .c_str(),
-                init ? init : "interpolate");
+                floor ? floor : std::to_string(defaults.oracle.pushdown_floor).c_str(), init ? init : "interpolate");
   return parse_settings(text);
 }
 
@@ -175,7 +178,7 @@ double ratio(std::uint64_t a, std::uint64_t b) { return b ? static_cast<double>(
 
 // bench_paper_tables sweep ROWS SPEC...: for each row (t1: Table 1 at 1000 iterations;
 // 2, 128: Table 3's rows), adaptive once, then dynamic with each SPEC
-// ("variant:c:k:init", see parse_settings), all against the same reference.
+// ("variant:c:k:floor:init", see parse_settings), all against the same reference.
 int sweep(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr, "usage: bench_paper_tables sweep t1,2,128 SPEC...\n");
@@ -212,7 +215,7 @@ int sweep(int argc, char** argv) {
       const double error_d = rad::compare(*ref.run.loaded->mesh, ref.run.output, *dynamic.loaded->mesh,
                                           dynamic.output, dynamic_visibility)
                                  .relative();
-      std::printf("%5s %-36s %12llu %9zu %8.2f %7.2f%% %7.2f%% %+7.0f%% %6.1f\n", c.key, settings.name().c_str(),
+      std::printf("%5s %-36s %12llu %9zu %8.2f %7.2f%% %7.2f%% %+7.1f%% %6.1f\n", c.key, settings.name().c_str(),
                   (unsigned long long)dynamic.report.energy_transfers, dynamic.report.elements,
                   ratio(adaptive.report.energy_transfers, dynamic.report.energy_transfers), 100 * error_a,
                   100 * error_d, 100 * (error_d / error_a - 1), dynamic.report.seconds);

@@ -23,30 +23,18 @@ double current_ratio(const OracleInputs& in) {
   const double cumulated = mean_luminance(in.cumulated);
   return cumulated > 0 ? mean_luminance(in.current) / cumulated : 0.0;
 }
-
-double contribution_gradient(const OracleInputs& in) {
-  double hi_current = 0, lo_current = 0, hi_cumulated = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double c = in.current[k].luminance();
-    hi_current = k == 0 ? c : std::max(hi_current, c);
-    lo_current = k == 0 ? c : std::min(lo_current, c);
-    hi_cumulated = std::max(hi_cumulated, in.cumulated[k].luminance());
-  }
-  return hi_cumulated > 0 ? (hi_current - lo_current) / hi_cumulated : 0.0;
-}
-
-double curvature_gradient(const OracleInputs& in) {
+double pushdown_gradient(const OracleInputs& in, double floor) {
   const double hi = std::max({in.cumulated[0].luminance(), in.cumulated[1].luminance(), in.cumulated[2].luminance()});
-  return hi > 0 ? in.current_curvature / hi : 0.0;
+  const double scale = std::max(in.current_peak, floor * hi);
+  return scale > 0 ? in.pushdown_error / scale : 0.0;
 }
 
 bool adaptive_oracle(const OracleInputs& in, double threshold) { return cumulated_gradient(in) > threshold; }
 
 bool dynamic_oracle(const OracleInputs& in, const OracleThresholds& t) {
-  if (t.variant == OracleThresholds::Variant::contribution)
-    return (cumulated_gradient(in) > t.cumulated_gradient &&       // the element's shading is uneven
-            contribution_gradient(in) > t.contribution_gradient) ||  // and this sender's part of it is,
-           curvature_gradient(in) > t.contribution_gradient;         // or dB bends where push-down is linear.
+  if (t.variant == OracleThresholds::Variant::pushdown)
+    return cumulated_gradient(in) > t.cumulated_gradient &&  // the element's shading is uneven,
+           pushdown_gradient(in, t.pushdown_floor) > t.pushdown;               // and interpolating this transfer would be wrong.
   return cumulated_gradient(in) > t.cumulated_gradient &&  // the element's shading is uneven,
          current_gradient(in) > t.current_gradient &&      // this sender is what makes it uneven,
          current_ratio(in) > t.current_ratio;              // and this sender matters to it.

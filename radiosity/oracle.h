@@ -1,5 +1,5 @@
 // Refinement oracles: the paper's Figure 3 (Adaptive Subdivision, Cohen et al. 1986)
-// and Figure 6 (Dynamic Subdivision, Dubuis & Bieri).
+// and Figure 6 (Dynamic Subdivision, Dubuis & Bieri), and our push-down oracle.
 //
 // All quantities are scale-free (independent of units and of how bright the scene is)
 // and measured on luminance at an element's three corners:
@@ -11,7 +11,11 @@
 //   current gradient     (max - min) / max of the radiosity dB that the current
 //                        sender alone brings to the corners;
 //   current/cumulated    mean dB / mean B: how much this transfer matters to the
-//                        element's brightness.
+//                        element's brightness;
+//   push-down error      the largest error, relative to this transfer's own peak,
+//                        that stopping here would leave at q's edge midpoints (the
+//                        corners its children add), where push-down interpolates dB
+//                        linearly: see OracleInputs::pushdown_error.
 //
 // A value of 0.3 for a gradient means the corners differ by 30% of the brightest.
 #pragma once
@@ -23,44 +27,52 @@
 namespace dynrad::rad {
 
 struct OracleThresholds {
+  // "paper": Figure 6 as published, all three conditions. "pushdown": the cumulated
+  // gradient condition, then refine where the push-down error passes `pushdown`.
+  //
+  // Why a second oracle: the paper's share condition (current/cumulated) stops a
+  // sender that is a small part of an element's light, whatever the error it leaves.
+  // When many senders are each a small share (a whole emitting wall), those errors
+  // have the same sign (dB is convex near a sender, and linear interpolation of a
+  // convex function overshoots) and add up: on the paper's 128-emitter room the
+  // paper's oracle ends 3.3x further from the reference than adaptive subdivision.
+  // Bounding each transfer's error by a fraction of that transfer bounds the sum by
+  // the same fraction of B, however many senders there are (bench/README.md).
+  enum class Variant { paper, pushdown } variant = Variant::paper;
   double cumulated_gradient = 0.25;
   double current_gradient = 0.25;
   double current_ratio = 0.25;
-  // "paper": Figure 6 as published. "contribution": the current transfer's spread
-  // measured against the cumulated brightness, (max dB - min dB) / max B, above
-  // `contribution_gradient`, with the cumulated gradient condition; no share condition.
-  // Many weak senders (a whole emitting wall) each shape an element's shading without
-  // any one of them being a large share of it, which the paper's third condition misses.
-  // The same variant also refines, whatever the corners say, where dB bends between
-  // them by more than `contribution_gradient` of max B (see current_curvature below):
-  // a lamp above the middle of a floor element lights its corners evenly.
-  enum class Variant { paper, contribution } variant = Variant::paper;
-  double contribution_gradient = 0.05;
+  double pushdown = 0.1;
+  // Push-down oracle: errors are measured against max(this transfer's peak,
+  // pushdown_floor * max B), so a transfer that is a negligible share of the element's
+  // light does not refine for its own sake.
+  double pushdown_floor = 0;
 };
 
 struct OracleInputs {
   std::array<Rgb, 3> cumulated;  // B at the corners, current transfer included
   std::array<Rgb, 3> current;    // dB at the corners from the current sender alone
-  // Luminance of the largest gap, over q's three edge midpoints, between dB estimated
-  // at the midpoint (Lambert's closed form there, times the mean visible fraction of
-  // the edge's ends: no rays) and the mean of dB at the edge's ends. It is the error
-  // push-down would make at the children's new corners. Filled only for the
-  // contribution variant; 0 otherwise.
-  double current_curvature = 0;
+  // Push-down oracle only (0 otherwise). At each of q's edge midpoints, the gap between
+  // dB estimated there (Lambert's closed form at the midpoint times the mean visible
+  // fraction of the edge's ends: no rays) and the mean of dB at the edge's ends, plus
+  // half the ends' difference when their visibility differs (a shadow edge may cross
+  // anywhere between them); the largest over the three edges, as luminance.
+  double pushdown_error = 0;
+  // Largest dB (luminance) at the corners and the midpoint estimates.
+  double current_peak = 0;
 };
 
 double cumulated_gradient(const OracleInputs& in);
 double current_gradient(const OracleInputs& in);
 double current_ratio(const OracleInputs& in);
-// (max dB - min dB) / max B: how much this transfer alone reshapes the element's shading.
-double contribution_gradient(const OracleInputs& in);
-// current_curvature / max B.
-double curvature_gradient(const OracleInputs& in);
+// pushdown_error / max(current_peak, floor * max B) (0 when this sender does not reach q).
+double pushdown_gradient(const OracleInputs& in, double floor = 0);
 
 // Figure 3: refine where the cumulated gradient passes the threshold.
 bool adaptive_oracle(const OracleInputs& in, double threshold);
 
-// Figure 6: refine only where all three conditions hold.
+// Figure 6 (paper variant): refine only where all three conditions hold. Push-down
+// variant: where the cumulated gradient and the push-down error pass their thresholds.
 bool dynamic_oracle(const OracleInputs& in, const OracleThresholds& thresholds);
 
 }  // namespace dynrad::rad

@@ -96,8 +96,8 @@ bool Solver::shoot_once() {
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
       if (refine_.method == Method::dynamic && can_split && !odd &&
-          refine_.dynamic.variant == OracleThresholds::Variant::contribution)
-        in.current_curvature = current_curvature(q, in.current, patch.reflectance);
+          refine_.dynamic.variant == OracleThresholds::Variant::pushdown)
+        estimate_pushdown_error(q, patch.reflectance, in);
       bool go_on = false;
       switch (refine_.method) {
         case Method::progressive:

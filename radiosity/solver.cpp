@@ -278,27 +278,31 @@ double Solver::element_form_factor(ElementId q) const {
   return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
 }
 
-double Solver::current_curvature(ElementId q, const std::array<Rgb, 3>& current, const Rgb& reflectance) const {
+void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const {
   const Element& el = hierarchy_.element(q);
   const Patch& sender = patches_[sender_];
   const Vec3d& n = hierarchy_.normal(q);
   const Vec3d centroid = hierarchy_.centroid(q);
   const double shot = (reflectance * current_shot_).luminance();
-  if (!(shot > 0)) return 0.0;
-  double worst = 0;
+  in.pushdown_error = in.current_peak = 0;
+  if (!(shot > 0)) return;
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const CornerFormFactor& fa = form_factor_.at(key(el.corners[k], patches_[el.patch].plane));
     const CornerFormFactor& fb = form_factor_.at(key(el.corners[l], patches_[el.patch].plane));
+    const double a = in.current[k].luminance(), b = in.current[l].luminance();
     const double unoccluded = fa.unoccluded + fb.unoccluded;
     const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
     Vec3d mid = (hierarchy_.position(el.corners[k]) + hierarchy_.position(el.corners[l])) * 0.5;
     mid += (centroid - mid) * 1e-2;  // inside q, as evaluation points are
-    const double f =
-        point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal) * visible;
-    worst = std::max(worst, std::abs(shot * f - 0.5 * (current[k].luminance() + current[l].luminance())));
+    const double at_mid =
+        shot * visible * point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+    const auto fraction = [](const CornerFormFactor& f) { return f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0; };
+    const bool shadow_edge = std::abs(fraction(fa) - fraction(fb)) > 1e-9;
+    const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);
+    in.pushdown_error = std::max(in.pushdown_error, error);
+    in.current_peak = std::max({in.current_peak, a, at_mid});
   }
-  return worst;
 }
 
 Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const {

@@ -97,8 +97,9 @@ class Solver {
   // shot again.
   void gather_new_elements(std::size_t first);
   double element_form_factor(ElementId e) const;
-  // OracleInputs::current_curvature for element q and this shot's dB at its corners.
-  double current_curvature(ElementId q, const std::array<Rgb, 3>& current, const Rgb& reflectance) const;
+  // OracleInputs::pushdown_error and current_peak for element q and this shot's dB at
+  // its corners.
+  void estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
   // Corner values for elements created since the last call, from their parents.

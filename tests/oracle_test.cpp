@@ -15,7 +15,6 @@ TEST(Oracle, QuantitiesAreScaleFree) {
   EXPECT_DOUBLE_EQ(cumulated_gradient(in), 0.5);  // (2 - 1) / 2
   EXPECT_DOUBLE_EQ(current_gradient(in), 0.5);    // (1 - 0.5) / 1
   EXPECT_DOUBLE_EQ(current_ratio(in), 0.5);       // mean 2/3 over mean 4/3
-  EXPECT_DOUBLE_EQ(contribution_gradient(in), 0.25);  // (1 - 0.5) / 2
   // The same picture a thousand times brighter gives the same numbers.
   const OracleInputs bright = inputs(2000, 1000, 1000, 1000, 500, 500);
   EXPECT_DOUBLE_EQ(cumulated_gradient(bright), cumulated_gradient(in));
@@ -36,10 +35,36 @@ TEST(Oracle, DynamicNeedsAllThreeConditions) {
   EXPECT_FALSE(dynamic_oracle(inputs(1, 1, 1, 1, 0.5, 0.5), t));
   EXPECT_TRUE(adaptive_oracle(inputs(2, 1, 1, 0, 0, 0), 0.25));
   EXPECT_FALSE(adaptive_oracle(inputs(1.1, 1, 1, 0, 0, 0), 0.25));
-  // The contribution variant refines for a weak but uneven sender.
-  OracleThresholds c;
-  c.variant = OracleThresholds::Variant::contribution;
-  EXPECT_TRUE(dynamic_oracle(inputs(20, 10, 10, 2, 0.5, 0.5), c));  // (2 - 0.5) / 20 = 0.075 > 0.05
+}
+
+TEST(Oracle, PushdownRefinesWhereInterpolationWouldBeWrong) {
+  OracleThresholds t;
+  t.variant = OracleThresholds::Variant::pushdown;
+  t.pushdown = 0.1;
+  // A weak sender (a twentieth of the element's light) whose transfer bends: the
+  // paper's share condition stops it, the push-down oracle does not.
+  OracleInputs in = inputs(20, 10, 10, 1, 0.5, 0.5);
+  in.current_peak = 1;
+  in.pushdown_error = 0.3;  // 30% of this transfer's peak would be wrong
+  EXPECT_DOUBLE_EQ(pushdown_gradient(in), 0.3);
+  EXPECT_TRUE(dynamic_oracle(in, t));
+  OracleThresholds paper;
+  EXPECT_FALSE(dynamic_oracle(in, paper));
+  // The same transfer, nearly linear across the element: push-down is good enough.
+  in.pushdown_error = 0.05;
+  EXPECT_FALSE(dynamic_oracle(in, t));
+  // Scale-free: ten times brighter, same answer.
+  OracleInputs bright = inputs(200, 100, 100, 10, 5, 5);
+  bright.current_peak = 10;
+  bright.pushdown_error = 3;
+  EXPECT_DOUBLE_EQ(pushdown_gradient(bright), 0.3);
+  // Even shading: nothing to refine, whatever the transfer does.
+  OracleInputs even = inputs(1, 1, 1, 1, 0.5, 0.5);
+  even.current_peak = 1;
+  even.pushdown_error = 0.5;
+  EXPECT_FALSE(dynamic_oracle(even, t));
+  // A sender that does not reach the element.
+  EXPECT_EQ(pushdown_gradient(inputs(2, 1, 1, 0, 0, 0)), 0.0);
 }
 
 }  // namespace

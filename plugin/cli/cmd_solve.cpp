@@ -40,7 +40,8 @@ struct SolveCliOptions {
   double patch_size = 0;  // 0: default for the scene
   int max_level = 3;
   double threshold = -1;  // -1: the method's default
-  std::string oracle = "paper";
+  std::string oracle = "pushdown";
+  double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
   rad::SolveOptions solve;
@@ -96,11 +97,20 @@ int run_solve(SolveCliOptions& options) {
     refine.dynamic.cumulated_gradient = refine.dynamic.current_gradient = refine.dynamic.current_ratio =
         options.threshold;
   }
-  if (options.oracle == "contribution") {
-    refine.dynamic.variant = rad::OracleThresholds::Variant::contribution;
-  } else if (options.oracle != "paper") {
-    throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: paper, contribution.");
+  if (options.oracle == "pushdown") {
+    refine.dynamic.variant = rad::OracleThresholds::Variant::pushdown;
+  } else if (options.oracle == "paper") {
+    refine.dynamic.variant = rad::OracleThresholds::Variant::paper;
+    // The paper's single threshold for all three conditions, unless --threshold says.
+    if (options.threshold <= 0)
+      refine.dynamic.cumulated_gradient = refine.dynamic.current_gradient = refine.dynamic.current_ratio = 0.25;
+  } else {
+    throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: pushdown, paper.");
   }
+  if (options.cumulated_gradient >= 0) refine.dynamic.cumulated_gradient = options.cumulated_gradient;
+  if (options.current_gradient >= 0) refine.dynamic.current_gradient = options.current_gradient;
+  if (options.current_ratio >= 0) refine.dynamic.current_ratio = options.current_ratio;
+  if (options.pushdown >= 0) refine.dynamic.pushdown = options.pushdown;
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
   if (!options.preview.empty()) check_output_writable(options.preview);
@@ -224,11 +234,21 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0, 12));
   command->add_option("--threshold", options->threshold,
-                      "Oracle threshold on relative gradients (default 0.25; dynamic uses it for all three conditions)")
+                      "Adaptive's gradient threshold (default 0.25); also all three of the paper oracle's")
       ->check(CLI::PositiveNumber);
   command->add_option("--oracle", options->oracle,
-                      "Dynamic's refinement oracle: paper (Figure 6) or contribution (see README)")
+                      "Dynamic's refinement oracle: pushdown (bounds push-down error) or paper (Figure 6); see README")
       ->capture_default_str();
+  command->add_option("--cumulated-gradient", options->cumulated_gradient,
+                      "Dynamic: threshold on the cumulated gradient (both oracles)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--current-gradient", options->current_gradient, "Paper oracle: threshold on the current gradient")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--current-ratio", options->current_ratio, "Paper oracle: threshold on current/cumulated")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--pushdown-error", options->pushdown,
+                      "Push-down oracle: largest push-down error allowed, as a fraction of the transfer")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
