@@ -38,71 +38,65 @@ struct Run {
   rad::Solver::Output output;
 };
 
-// Dynamic's oracle and new-element rule for a run; defaults as in the solver, or from
-// DYNRAD_ORACLE=paper|pushdown, DYNRAD_CUMULATED=c, DYNRAD_PUSHDOWN=k and
-// DYNRAD_NEW_ELEMENTS=interpolate|constant|gather for experiments without rebuilding.
+// Dynamic's oracle and new-element rule for a run: the solver's defaults, changed by
+// a spec "variant:c:k:floor:init" (any suffix optional; c is the variant's cumulated
+// gradient threshold, k the paper's other two or the push-down error) or by the
+// environment: DYNRAD_ORACLE=paper|pushdown, DYNRAD_CUMULATED=c, DYNRAD_K=k,
+// DYNRAD_FLOOR=f, DYNRAD_NEW_ELEMENTS=interpolate|constant|gather.
 struct DynamicSettings {
   rad::OracleThresholds oracle;
   rad::RefineSettings::NewElements new_elements = rad::RefineSettings::NewElements::interpolate;
+  bool paper() const { return oracle.variant == rad::OracleThresholds::Variant::paper; }
   std::string name() const {
     char text[160];
-    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g f=%.3g %s",
-                  oracle.variant == rad::OracleThresholds::Variant::paper ? "paper" : "pushdown",
-                  oracle.cumulated_gradient,
-                  oracle.variant == rad::OracleThresholds::Variant::paper ? oracle.current_gradient
-                                                                          : oracle.pushdown,
-                  oracle.pushdown_floor,
+    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g f=%.3g %s", paper() ? "paper" : "pushdown",
+                  paper() ? oracle.cumulated_gradient : oracle.pushdown_cumulated_gradient,
+                  paper() ? oracle.current_gradient : oracle.pushdown, paper() ? 0.0 : oracle.pushdown_floor,
                   new_elements == rad::RefineSettings::NewElements::interpolate ? "interpolate"
                   : new_elements == rad::RefineSettings::NewElements::constant  ? "constant"
                                                                                : "gather");
     return text;
   }
+  void set(int field, const std::string& value) {
+    if (value.empty()) return;
+    const double x = std::atof(value.c_str());
+    switch (field) {
+      case 0:
+        oracle.variant = value == "paper" ? rad::OracleThresholds::Variant::paper : rad::OracleThresholds::Variant::pushdown;
+        break;
+      case 1: (paper() ? oracle.cumulated_gradient : oracle.pushdown_cumulated_gradient) = x; break;
+      case 2:
+        if (paper()) oracle.current_gradient = oracle.current_ratio = x;
+        else oracle.pushdown = x;
+        break;
+      case 3: oracle.pushdown_floor = x; break;
+      case 4:
+        new_elements = value == "constant" ? rad::RefineSettings::NewElements::constant
+                       : value == "gather" ? rad::RefineSettings::NewElements::gather
+                                           : rad::RefineSettings::NewElements::interpolate;
+        break;
+    }
+  }
 };
 
-// "variant:c:k:floor:init", any suffix optional.
 DynamicSettings parse_settings(const std::string& spec) {
   DynamicSettings s;
-  std::vector<std::string> parts;
   std::size_t start = 0;
-  while (true) {
+  for (int field = 0;; ++field) {
     const std::size_t colon = spec.find(':', start);
-    parts.push_back(spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    s.set(field, spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
     if (colon == std::string::npos) break;
     start = colon + 1;
   }
-  if (!parts.empty() && parts[0] == "pushdown") s.oracle.variant = rad::OracleThresholds::Variant::pushdown;
-  if (parts.size() > 1) s.oracle.cumulated_gradient = std::atof(parts[1].c_str());
-  if (parts.size() > 2) {
-    const double k = std::atof(parts[2].c_str());
-    s.oracle.pushdown = k;
-    if (s.oracle.variant == rad::OracleThresholds::Variant::paper) s.oracle.current_gradient = s.oracle.current_ratio = k;
-  }
-  if (parts.size() > 3) s.oracle.pushdown_floor = std::atof(parts[3].c_str());
-  if (parts.size() > 4)
-    s.new_elements = parts[4] == "constant" ? rad::RefineSettings::NewElements::constant
-                     : parts[4] == "gather" ? rad::RefineSettings::NewElements::gather
-                                            : rad::RefineSettings::NewElements::interpolate;
   return s;
 }
 
 DynamicSettings settings_from_environment() {
-  const char* oracle = std::getenv("DYNRAD_ORACLE");
-  std::string spec = oracle ? oracle : "paper";
-  DynamicSettings defaults;
-  if (spec == "pushdown") defaults.oracle.variant = rad::OracleThresholds::Variant::pushdown;
-  const char* c = std::getenv("DYNRAD_CUMULATED");
-  const char* k = std::getenv("DYNRAD_PUSHDOWN");
-  const char* init = std::getenv("DYNRAD_NEW_ELEMENTS");
-  char text[200];
-  const char* floor = std::getenv("DYNRAD_PUSHDOWN_FLOOR");
-  std::snprintf(text, sizeof text, "%s:%s:%s:%s:%s", spec.c_str(),
-                c ? c : std::to_string(defaults.oracle.cumulated_gradient).c_str(),
-                k ? k : std::to_string(defaults.oracle.variant == rad::OracleThresholds::Variant::paper
-                                           ? defaults.oracle.current_gradient
-                                           : defaults.oracle.pushdown)
-                            .c_str(),
-                floor ? floor : std::to_string(defaults.oracle.pushdown_floor).c_str(), init ? init : "interpolate");
-  return parse_settings(text);
+  DynamicSettings s;
+  const char* names[] = {"DYNRAD_ORACLE", "DYNRAD_CUMULATED", "DYNRAD_K", "DYNRAD_FLOOR", "DYNRAD_NEW_ELEMENTS"};
+  for (int field = 0; field < 5; ++field)
+    if (const char* v = std::getenv(names[field])) s.set(field, v);
+  return s;
 }
 
 Run solve(const std::string& sample, rad::Method method, int level, std::size_t iterations,

@@ -38,15 +38,19 @@ struct OracleThresholds {
   // paper's oracle ends 3.3x further from the reference than adaptive subdivision.
   // Bounding each transfer's error by a fraction of that transfer bounds the sum by
   // the same fraction of B, however many senders there are (bench/README.md).
-  enum class Variant { paper, pushdown } variant = Variant::paper;
+  enum class Variant { paper, pushdown } variant = Variant::pushdown;
+  // Paper: Figure 6's three thresholds (the paper uses one value for all).
   double cumulated_gradient = 0.25;
   double current_gradient = 0.25;
   double current_ratio = 0.25;
-  double pushdown = 0.1;
-  // Push-down oracle: errors are measured against max(this transfer's peak,
-  // pushdown_floor * max B), so a transfer that is a negligible share of the element's
-  // light does not refine for its own sake.
-  double pushdown_floor = 0;
+  // Push-down: its own cumulated gradient threshold, the largest push-down error
+  // allowed (a fraction of the transfer), and the floor: errors are measured against
+  // max(the transfer's peak, pushdown_floor * max B), so a transfer that is a
+  // negligible share of the element's light does not refine for its own sake.
+  // Defaults from the sweep in bench/README.md.
+  double pushdown_cumulated_gradient = 0.05;
+  double pushdown = 0.05;
+  double pushdown_floor = 0.05;
 };
 
 struct OracleInputs {

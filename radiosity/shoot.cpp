@@ -128,6 +128,7 @@ bool Solver::shoot_once() {
     // subdivide(q). New elements start from their parent's values before this shot
     // (dB is added to the parent below) and receive the shot at the next level.
     for (ElementId q : subdivide) {
+      if (!refinement_allowed()) break;  // a limit: the shot stops at q (see below)
       const bool starts_split = !std::binary_search(complete_split.begin(), complete_split.end(), q);
       hierarchy_.refine(q);
       initialise_new_elements();

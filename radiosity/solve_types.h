@@ -46,6 +46,11 @@ struct SolveReport {
   std::string stopped_by;  // "converged", "iterations", "time limit", "interrupted"
   std::vector<double> unshot_history;  // after each shot
   double form_factor_sum_error = 0;    // mean |1 - sum of receiver form factors| before normalisation
+  // Empty, or why refinement stopped before the solve did ("max elements", "memory
+  // budget") and at which shot.
+  std::string refinement_stopped;
+  std::size_t refinement_stopped_at = 0;
+  std::size_t peak_resident_memory = 0;  // bytes, where known
   EnergyBalance energy;
 };
 

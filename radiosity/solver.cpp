@@ -6,8 +6,11 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
@@ -122,6 +125,30 @@ std::uint32_t Solver::brightest_patch() const {
     }
   }
   return best;
+}
+
+std::size_t resident_memory() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  unsigned long size = 0, resident = 0;
+  const int read = std::fscanf(f, "%lu %lu", &size, &resident);
+  std::fclose(f);
+  return read == 2 ? static_cast<std::size_t>(resident) * static_cast<std::size_t>(sysconf(_SC_PAGESIZE)) : 0;
+}
+
+bool Solver::refinement_allowed() {
+  if (!report_.refinement_stopped.empty()) return false;
+  if (refine_.max_elements > 0 && hierarchy_.element_count() >= refine_.max_elements) {
+    report_.refinement_stopped = "max elements";
+  } else if (refine_.memory_budget > 0 && hierarchy_.element_count() >= memory_checked_at_ + 4096) {
+    memory_checked_at_ = hierarchy_.element_count();  // /proc is read every 4096 new elements
+    const std::size_t resident = resident_memory();
+    report_.peak_resident_memory = std::max(report_.peak_resident_memory, resident);
+    if (resident >= refine_.memory_budget) report_.refinement_stopped = "memory budget";
+  }
+  if (report_.refinement_stopped.empty()) return true;
+  report_.refinement_stopped_at = report_.iterations + 1;
+  return false;
 }
 
 double Solver::unshot_fraction() const { return sum(report_.energy.unshot) / emitted_total_; }
@@ -470,6 +497,7 @@ SolveReport Solver::run() {
   report_.receivers = scene_.vertex_count();
   report_.visibility_rays = visibility_->rays();
   report_.form_factor_sum_error = report_.iterations ? form_factor_error_sum_ / report_.iterations : 0;
+  report_.peak_resident_memory = std::max(report_.peak_resident_memory, resident_memory());
   return report_;
 }
 

@@ -39,7 +39,15 @@ struct RefineSettings {
   // corner the parent's mean; "gather" recalculates them from every earlier sender as
   // adaptive does (for measurements: it costs a transfer per sender).
   enum class NewElements { interpolate, constant, gather } new_elements = NewElements::interpolate;
+  // Limits (0: none). When one is reached, the solve goes on without further
+  // refinement and the report says why (SolveReport::refinement_stopped). The element
+  // limit may be passed by the closure of the split that reaches it (a few elements).
+  std::size_t max_elements = 0;
+  std::size_t memory_budget = 0;  // bytes of resident memory of the whole process
 };
+
+// Resident memory of this process in bytes (Linux /proc; 0 where unknown).
+std::size_t resident_memory();
 
 class Solver {
  public:
@@ -76,6 +84,8 @@ class Solver {
   };
 
   std::uint32_t brightest_patch() const;
+  // False once a limit of RefineSettings is reached; says so in the report, once.
+  bool refinement_allowed();
   double lost_fraction(std::uint32_t patch);
   // Form factors at the corners of `elements` for the current sender, computed in
   // parallel for every (vertex, patch) not yet known this shot.
@@ -132,6 +142,7 @@ class Solver {
   std::unordered_map<std::uint64_t, CornerFormFactor> form_factor_;
   std::unordered_map<std::uint64_t, Vec3d> evaluation_point_;  // by (vertex, facing), whole solve
   double emitted_total_ = 0;
+  std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;
   SolveReport report_;
 

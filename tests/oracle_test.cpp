@@ -25,7 +25,8 @@ TEST(Oracle, QuantitiesAreScaleFree) {
 }
 
 TEST(Oracle, DynamicNeedsAllThreeConditions) {
-  const OracleThresholds t;  // 0.25 each
+  OracleThresholds t;  // 0.25 each
+  t.variant = OracleThresholds::Variant::paper;
   EXPECT_TRUE(dynamic_oracle(inputs(2, 1, 1, 1, 0.5, 0.5), t));
   // Uneven shading, but this sender lights the element evenly: no refinement for it.
   EXPECT_FALSE(dynamic_oracle(inputs(2, 1, 1, 0.5, 0.5, 0.5), t));
@@ -38,9 +39,9 @@ TEST(Oracle, DynamicNeedsAllThreeConditions) {
 }
 
 TEST(Oracle, PushdownRefinesWhereInterpolationWouldBeWrong) {
-  OracleThresholds t;
-  t.variant = OracleThresholds::Variant::pushdown;
+  OracleThresholds t;  // the push-down oracle is the default
   t.pushdown = 0.1;
+  t.pushdown_floor = 0;
   // A weak sender (a twentieth of the element's light) whose transfer bends: the
   // paper's share condition stops it, the push-down oracle does not.
   OracleInputs in = inputs(20, 10, 10, 1, 0.5, 0.5);
@@ -49,7 +50,13 @@ TEST(Oracle, PushdownRefinesWhereInterpolationWouldBeWrong) {
   EXPECT_DOUBLE_EQ(pushdown_gradient(in), 0.3);
   EXPECT_TRUE(dynamic_oracle(in, t));
   OracleThresholds paper;
+  paper.variant = OracleThresholds::Variant::paper;
   EXPECT_FALSE(dynamic_oracle(in, paper));
+  // With a floor, a transfer that small a share of B is measured against the floor.
+  OracleThresholds floored = t;
+  floored.pushdown_floor = 0.5;                             // errors against max(1, 0.5 * 20) = 10
+  EXPECT_DOUBLE_EQ(pushdown_gradient(in, 0.5), 0.03);
+  EXPECT_FALSE(dynamic_oracle(in, floored));
   // The same transfer, nearly linear across the element: push-down is good enough.
   in.pushdown_error = 0.05;
   EXPECT_FALSE(dynamic_oracle(in, t));

@@ -191,3 +191,40 @@ TEST(DiffCommand, ZeroAgainstItselfAndHalfForHalfTheLight) {
 
 }  // namespace
 }  // namespace dynrad
+
+namespace dynrad {
+namespace {
+
+// --max-elements and --memory-budget stop refinement, not the solve, and say so.
+TEST(SolveCommand, ElementAndMemoryLimitsStopRefinementOnly) {
+  const test::TempDir dir;
+  const std::string common = " --method dynamic --iterations 200 --max-level 4";
+  const std::string in = "'" + test::sample("paper_empty_room_small_source.obj") + "'";
+  auto solve = [&](const std::string& name, const std::string& extra) {
+    const auto r = test::run_dynrad("solve " + in + " -o '" + dir.path(name + ".ply") + "' --report '" +
+                                    dir.path(name + ".json") + "'" + common + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return std::make_pair(nlohmann::json::parse(test::read_text(dir.path(name + ".json"))), r.output);
+  };
+  const auto [free, free_log] = solve("free", "");
+  EXPECT_EQ(free["refinement_stopped"], "");
+  const std::size_t unlimited = free["elements"];
+  const std::size_t cap = unlimited / 3;
+  const auto [capped, capped_log] = solve("capped", " --max-elements " + std::to_string(cap));
+  EXPECT_EQ(capped["refinement_stopped"], "max elements");
+  EXPECT_GE(capped["elements"].get<std::size_t>(), cap);
+  EXPECT_LE(capped["elements"].get<std::size_t>(), cap + 64);  // one split's closure at most
+  EXPECT_EQ(capped["iterations"], 200);                      // the solve itself went on
+  EXPECT_NE(capped_log.find("refinement stopped"), std::string::npos) << capped_log;
+  EXPECT_TRUE(test::file_exists(dir.path("capped.ply")));
+  // A budget below what the process already uses: refinement stops at the first look
+  // (after 4096 new elements), the solve does not.
+  const auto [tight, tight_log] = solve("tight", " --memory-budget 1");
+  EXPECT_EQ(tight["refinement_stopped"], "memory budget");
+  EXPECT_LT(tight["elements"].get<std::size_t>(), unlimited);
+  EXPECT_GT(tight["peak_resident_memory"].get<std::size_t>(), 1u << 20);
+  EXPECT_EQ(tight["iterations"], 200);
+}
+
+}  // namespace
+}  // namespace dynrad

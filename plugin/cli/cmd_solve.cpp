@@ -41,7 +41,9 @@ struct SolveCliOptions {
   int max_level = 3;
   double threshold = -1;  // -1: the method's default
   std::string oracle = "pushdown";
-  double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1;  // -1: default
+  std::size_t max_elements = 0;
+  double memory_budget_mb = 0;
+  double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
   rad::SolveOptions solve;
@@ -92,25 +94,26 @@ int run_solve(SolveCliOptions& options) {
     throw InputError("--method", 0, e.what());
   }
   refine.max_level = options.max_level;
+  rad::OracleThresholds& oracle = refine.dynamic;
   if (options.threshold > 0) {
     refine.adaptive_threshold = options.threshold;
-    refine.dynamic.cumulated_gradient = refine.dynamic.current_gradient = refine.dynamic.current_ratio =
-        options.threshold;
+    oracle.cumulated_gradient = oracle.current_gradient = oracle.current_ratio = options.threshold;
   }
   if (options.oracle == "pushdown") {
-    refine.dynamic.variant = rad::OracleThresholds::Variant::pushdown;
+    oracle.variant = rad::OracleThresholds::Variant::pushdown;
+    if (options.cumulated_gradient >= 0) oracle.pushdown_cumulated_gradient = options.cumulated_gradient;
   } else if (options.oracle == "paper") {
-    refine.dynamic.variant = rad::OracleThresholds::Variant::paper;
-    // The paper's single threshold for all three conditions, unless --threshold says.
-    if (options.threshold <= 0)
-      refine.dynamic.cumulated_gradient = refine.dynamic.current_gradient = refine.dynamic.current_ratio = 0.25;
+    oracle.variant = rad::OracleThresholds::Variant::paper;
+    if (options.cumulated_gradient >= 0) oracle.cumulated_gradient = options.cumulated_gradient;
   } else {
     throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: pushdown, paper.");
   }
-  if (options.cumulated_gradient >= 0) refine.dynamic.cumulated_gradient = options.cumulated_gradient;
-  if (options.current_gradient >= 0) refine.dynamic.current_gradient = options.current_gradient;
-  if (options.current_ratio >= 0) refine.dynamic.current_ratio = options.current_ratio;
-  if (options.pushdown >= 0) refine.dynamic.pushdown = options.pushdown;
+  if (options.current_gradient >= 0) oracle.current_gradient = options.current_gradient;
+  if (options.current_ratio >= 0) oracle.current_ratio = options.current_ratio;
+  if (options.pushdown >= 0) oracle.pushdown = options.pushdown;
+  if (options.pushdown_floor >= 0) oracle.pushdown_floor = options.pushdown_floor;
+  refine.max_elements = options.max_elements;
+  refine.memory_budget = static_cast<std::size_t>(options.memory_budget_mb * 1024 * 1024);
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
   if (!options.preview.empty()) check_output_writable(options.preview);
@@ -192,6 +195,9 @@ int run_solve(SolveCliOptions& options) {
     j["stopped_by"] = report.stopped_by;
     j["unshot_history"] = report.unshot_history;
     j["form_factor_sum_error"] = report.form_factor_sum_error;
+    j["refinement_stopped"] = report.refinement_stopped;
+    j["refinement_stopped_at"] = report.refinement_stopped_at;
+    j["peak_resident_memory"] = report.peak_resident_memory;
     j["exposure"] = exposure;
     j["patch_size"] = patch_size;
     j["energy"] = {{"emitted", rgb_json(e.emitted)},
@@ -199,6 +205,8 @@ int run_solve(SolveCliOptions& options) {
                    {"escaped", rgb_json(e.escaped)},
                    {"unshot", rgb_json(e.unshot)}};
     j["options"] = {{"converge", options.solve.converge},
+                    {"max_elements", options.max_elements},
+                    {"memory_budget_mib", options.memory_budget_mb},
                     {"iterations", options.solve.max_iterations},
                     {"time_limit", options.solve.time_limit},
                     {"threads", options.solve.threads},
@@ -207,6 +215,9 @@ int run_solve(SolveCliOptions& options) {
     file.stream() << j.dump(2) << "\n";
     file.commit();
   }
+  if (!report.refinement_stopped.empty())
+    spdlog::warn("refinement stopped at shot {} ({} reached, {} elements); the solve went on without it.",
+                 report.refinement_stopped_at, report.refinement_stopped, report.elements);
   if (report.stopped_by == "interrupted") {
     spdlog::warn("interrupted: wrote the solution so far, with {:.2f}% of the emitted power not yet shot.",
                  100 * report.unshot_fraction);
@@ -248,6 +259,14 @@ Command add_solve_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--pushdown-error", options->pushdown,
                       "Push-down oracle: largest push-down error allowed, as a fraction of the transfer")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--pushdown-floor", options->pushdown_floor,
+                      "Push-down oracle: errors are measured against at least this fraction of the element's B")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--max-elements", options->max_elements,
+                      "Stop refining (and go on solving) once the element tree holds this many (0: no limit)");
+  command->add_option("--memory-budget", options->memory_budget_mb,
+                      "Stop refining (and go on solving) once the process uses this many MiB (0: no limit)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
       ->capture_default_str()
