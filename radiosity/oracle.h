@@ -50,7 +50,7 @@ struct OracleThresholds {
   // Defaults from the sweep in bench/README.md.
   double pushdown_cumulated_gradient = 0.05;
   double pushdown = 0.05;
-  double pushdown_floor = 0.05;
+  double pushdown_floor = 0.02;
 };
 
 struct OracleInputs {

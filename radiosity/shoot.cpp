@@ -45,6 +45,8 @@
 // patch_element_transfers counts those below patch level.
 #include "radiosity/solver.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace dynrad::rad {
@@ -69,6 +71,11 @@ bool Solver::shoot_once() {
   // again to complete the 1 -> 4 split. (Dynamic needs no marks: it reaches odd
   // generations only by going on from an even one, so it always completes the split.)
   std::vector<ElementId> complete_split, complete_split_next;
+  struct Decision {
+    OracleInputs in;
+    bool go_on = false;
+  };
+  std::vector<Decision> decisions;
   auto count_transfer = [this](const Element& el) {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
@@ -82,11 +89,16 @@ bool Solver::shoot_once() {
     subdivide.clear();
     passed.clear();
     complete_split_next.clear();
-    for (ElementId q : level) {
+    // shoot(i, q) and the oracle for every q of this level, in parallel: they only read
+    // the state. Their effects follow in a serial pass, in level order, so the result
+    // does not depend on the number of threads.
+    decisions.resize(level.size());
+    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t n) {
+      const ElementId q = level[n];
       const Element& el = hierarchy_.element(q);
       const Patch& patch = patches_[el.patch];
-      // shoot(i, q)
-      OracleInputs in;
+      OracleInputs& in = decisions[n].in;
+      in = OracleInputs{};
       // An element gathered during this shot already holds this shot's transfer.
       const bool holds_shot = gathered_in_[q] == report_.iterations + 1;
       for (int k = 0; k < 3; ++k) {
@@ -109,10 +121,17 @@ bool Solver::shoot_once() {
           break;
         case Method::dynamic:
           go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
-          if (go_on && !odd) count_transfer(el);  // a whole paper level the shot passes through
           break;
       }
-      if (go_on) {
+      decisions[n].go_on = go_on;
+    });
+    for (std::size_t n = 0; n < level.size(); ++n) {
+      const ElementId q = level[n];
+      const Element& el = hierarchy_.element(q);
+      const OracleInputs& in = decisions[n].in;
+      if (decisions[n].go_on) {
+        // dynamic: a whole paper level the shot passes through
+        if (refine_.method == Method::dynamic && el.generation % 2 == 0) count_transfer(el);
         flush(q);  // the children must hold what earlier shots pushed down before they are shot
         passed.emplace_back(q, in.current);
         if (el.is_leaf()) subdivide.push_back(q);

@@ -224,14 +224,15 @@ double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& no
   // Visible fraction: a few rays first; more only where those disagree.
   Rng rng{mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id))};
   int visible = 0, cast = 0;
+  Vec3d targets[256];
   auto pass = [&](int count) {
-    const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))));
+    const int side = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))), 1, 16);
+    int n = 0;
     for (int i = 0; i < side; ++i)
-      for (int j = 0; j < side; ++j) {
-        const Vec3d target = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
-        visible += !visibility_->occluded(x, normal, target, sender.normal);
-        ++cast;
-      }
+      for (int j = 0; j < side; ++j)
+        targets[n++] = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
+    visible += visibility_->visible_count(x, normal, targets, n, sender.normal);
+    cast += n;
   };
   pass(options_.min_rays);
   if (visible != 0 && visible != cast) pass(options_.max_rays);

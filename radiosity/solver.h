@@ -71,6 +71,8 @@ class Solver {
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
+  // For benchmarks: see Visibility::record_rays (single thread only).
+  void record_rays(std::vector<RTCRay>* sink) { visibility_->record_rays(sink); }
 
  private:
   struct Patch {

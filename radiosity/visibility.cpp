@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -86,14 +87,13 @@ Visibility::~Visibility() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to,
-                          const Vec3d& to_normal) const {
+bool Visibility::make_segment(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal,
+                              RTCRay& ray) const {
   const Vec3d origin = from + from_normal * epsilon_ - centre_;
   Vec3d direction = (to + to_normal * epsilon_ - centre_) - origin;
   const double distance = direction.norm();
   if (distance <= epsilon_) return false;
   direction /= distance;
-  RTCRay ray;
   ray.org_x = static_cast<float>(origin[0]);
   ray.org_y = static_cast<float>(origin[1]);
   ray.org_z = static_cast<float>(origin[2]);
@@ -105,11 +105,69 @@ bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec
   ray.mask = 0xFFFFFFFFu;
   ray.time = 0;
   ray.flags = 0;
+  ray.id = 0;
+  return true;
+}
+
+bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to,
+                          const Vec3d& to_normal) const {
+  RTCRay ray;
+  if (!make_segment(from, from_normal, to, to_normal, ray)) return false;
+  if (record_) record_->push_back(ray);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcOccluded1(scene_, &context, &ray);
   rays_.fetch_add(1, std::memory_order_relaxed);
   return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+int Visibility::visible_count(const Vec3d& from, const Vec3d& from_normal, const Vec3d* targets, int count,
+                              const Vec3d& to_normal) const {
+  constexpr int kStream = 64;
+  RTCRay rays[kStream];
+  int visible = 0;
+  for (int start = 0; start < count; start += kStream) {
+    int n = 0;
+    for (int i = start; i < std::min(count, start + kStream); ++i) {
+      if (make_segment(from, from_normal, targets[i], to_normal, rays[n])) {
+        if (record_) record_->push_back(rays[n]);
+        ++n;
+      } else {
+        ++visible;  // the ends touch: nothing between them
+      }
+    }
+    if (n == 0) continue;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded1M(scene_, &context, rays, static_cast<unsigned>(n), sizeof(RTCRay));
+    for (int i = 0; i < n; ++i) visible += rays[i].tfar >= 0;
+    rays_.fetch_add(static_cast<std::uint64_t>(n), std::memory_order_relaxed);
+  }
+  return visible;
+}
+
+std::size_t Visibility::replay(const RTCRay* rays, std::size_t count, int stream) const {
+  std::size_t blocked = 0;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  if (stream <= 1) {
+    for (std::size_t i = 0; i < count; ++i) {
+      RTCRay ray = rays[i];
+      rtcOccluded1(scene_, &context, &ray);
+      blocked += ray.tfar < 0;
+    }
+  } else {
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    std::vector<RTCRay> batch(static_cast<std::size_t>(stream));
+    for (std::size_t start = 0; start < count; start += batch.size()) {
+      const std::size_t n = std::min(batch.size(), count - start);
+      std::copy(rays + start, rays + start + n, batch.begin());
+      rtcOccluded1M(scene_, &context, batch.data(), static_cast<unsigned>(n), sizeof(RTCRay));
+      for (std::size_t i = 0; i < n; ++i) blocked += batch[i].tfar < 0;
+    }
+  }
+  return blocked;
 }
 
 Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal, const Vec3d& direction) const {

@@ -29,6 +29,19 @@ class Visibility {
   // grazing angle does not end inside the target's plane.
   bool occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal) const;
 
+  // How many of `targets` (points on a surface with unit normal `to_normal`) are seen
+  // from `from`, with the same offsets as occluded(). The rays go to Embree as one
+  // stream (rtcOccluded1M, flagged coherent: they share their origin).
+  int visible_count(const Vec3d& from, const Vec3d& from_normal, const Vec3d* targets, int count,
+                    const Vec3d& to_normal) const;
+
+  // For benchmarks: while set, every occlusion ray is also appended to `sink` (one
+  // thread only: the sink is not locked). Null stops recording.
+  void record_rays(std::vector<RTCRay>* sink) { record_ = sink; }
+  // Casts recorded rays as they are (one at a time, or as streams of `stream` rays);
+  // returns how many were blocked. For the throughput benchmark's reference.
+  std::size_t replay(const RTCRay* rays, std::size_t count, int stream = 1) const;
+
   enum class Hit { nothing, front, back };
   // What a ray from `origin` (on a surface with unit normal `normal`) in direction
   // `direction` meets first: nothing (it leaves the scene), a face's front, or a back.
@@ -53,6 +66,11 @@ class Visibility {
   double epsilon_ = 0;
   std::vector<Vec3d> face_normals_;  // by Embree primitive id
   mutable std::atomic<std::uint64_t> rays_{0};
+  std::vector<RTCRay>* record_ = nullptr;
+  // Fills `ray` for the segment from `from` to `to`, offsets included; false when the
+  // two ends are closer than the offsets (nothing can be between them).
+  bool make_segment(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal,
+                    RTCRay& ray) const;
 };
 
 }  // namespace dynrad::rad
