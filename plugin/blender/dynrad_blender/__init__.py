@@ -325,8 +325,9 @@ class DYNRAD_OT_light(bpy.types.Operator):
     def modal(self, context, event):
         if event.type == "ESC":
             self.cancel.value = 1  # the solve stops at the next shot boundary
-        if event.type != "TIMER":
             return {"RUNNING_MODAL"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}  # the interface stays usable while the solve runs
         shot, unshot = self.progress
         context.workspace.status_text_set("dynrad: shot %d, unshot %.2f%% (Esc: stop and keep)" % (shot, 100 * unshot))
         if self._thread.is_alive():
