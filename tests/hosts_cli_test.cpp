@@ -2,9 +2,9 @@
 // (calculation points), and the anytime stop of `solve` under signals.
 #include "test_support.h"
 
+#include <gtest/gtest.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <regex>
@@ -88,8 +88,7 @@ std::string furnace_obj(const test::TempDir& dir) {
 TEST(ProbeCommand, FurnaceBoxGivesClosedFormRadiosityAndIrradiance) {
   test::TempDir dir;
   const std::string model = furnace_obj(dir);
-  auto r = test::run_dynrad("solve '" + model + "' -o '" + dir.path("lit.ply") +
-                            "' --patch-size 0.3 --converge 1e-4");
+  auto r = test::run_dynrad("solve '" + model + "' -o '" + dir.path("lit.ply") + "' --patch-size 0.3 --converge 1e-4");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string points = dir.write("points.txt",
                                        "# x y z nx ny nz\n"
@@ -208,7 +207,8 @@ TEST(ProbeCommand, BadPointsNameTheLineAndWriteNothing) {
 // the program at once, writing nothing.
 TEST(SolveSignals, FirstInterruptWritesWithUnshotFractionSecondQuits) {
   test::TempDir dir;
-  const std::string solve = std::string("'") + DYNRAD_EXE + "' solve '" + test::sample("globillum_room_obstructed.obj") +
+  const std::string solve = std::string("'") + DYNRAD_EXE + "' solve '" +
+                            test::sample("globillum_room_obstructed.obj") +
                             "' --patch-size 0.15 --converge 1e-9 --time-limit 60 -o ";
   auto r = test::run_shell("( " + solve + "'" + dir.path("once.ply") +
                            "' & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo exit=$? )");

@@ -128,8 +128,8 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
     const std::string polygon = "dynrad_scene_create: polygon " + std::to_string(i);
     const uint32_t size = polygon_sizes[i];
     if (size < 3)
-      fail(DYNRAD_INVALID_INPUT, polygon + " has " + std::to_string(size) +
-                                     " corners; a polygon needs at least 3. Check polygon_sizes.");
+      fail(DYNRAD_INVALID_INPUT,
+           polygon + " has " + std::to_string(size) + " corners; a polygon needs at least 3. Check polygon_sizes.");
     std::vector<std::uint32_t> loop(polygon_indices + next, polygon_indices + next + size);
     next += size;
     for (uint32_t k = 0; k < size; ++k)
@@ -139,8 +139,7 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
                                        std::to_string(vertex_count) + " vertices).");
     if (polygon_materials[i] >= material_count)
       fail(DYNRAD_INVALID_INPUT, polygon + ": material index " + std::to_string(polygon_materials[i]) +
-                                     " is out of range (there are " + std::to_string(material_count) +
-                                     " materials).");
+                                     " is out of range (there are " + std::to_string(material_count) + " materials).");
     used[polygon_materials[i]] = 1;
     soup.polygons.push_back(std::move(loop));
     soup.material.push_back(polygon_materials[i]);
@@ -175,8 +174,8 @@ dynrad_stop_reason stop_reason(const std::string& stopped_by) {
   return DYNRAD_STOP_CONVERGED;
 }
 
-dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress,
-                     void* user, const volatile int* cancel) {
+dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress, void* user,
+                     const volatile int* cancel) {
   std::unique_ptr<SceneMesh> mesh;
   {
     std::lock_guard<std::mutex> lock(scene.mutex);
@@ -277,14 +276,22 @@ int dynrad_abi_version(void) { return DYNRAD_ABI_VERSION; }
 
 const char* dynrad_status_name(dynrad_status status) {
   switch (status) {
-    case DYNRAD_OK: return "DYNRAD_OK";
-    case DYNRAD_STOPPED: return "DYNRAD_STOPPED";
-    case DYNRAD_INVALID_ARGUMENT: return "DYNRAD_INVALID_ARGUMENT";
-    case DYNRAD_INVALID_INPUT: return "DYNRAD_INVALID_INPUT";
-    case DYNRAD_NO_EMITTER: return "DYNRAD_NO_EMITTER";
-    case DYNRAD_BUFFER_TOO_SMALL: return "DYNRAD_BUFFER_TOO_SMALL";
-    case DYNRAD_OUT_OF_MEMORY: return "DYNRAD_OUT_OF_MEMORY";
-    case DYNRAD_INTERNAL_ERROR: return "DYNRAD_INTERNAL_ERROR";
+    case DYNRAD_OK:
+      return "DYNRAD_OK";
+    case DYNRAD_STOPPED:
+      return "DYNRAD_STOPPED";
+    case DYNRAD_INVALID_ARGUMENT:
+      return "DYNRAD_INVALID_ARGUMENT";
+    case DYNRAD_INVALID_INPUT:
+      return "DYNRAD_INVALID_INPUT";
+    case DYNRAD_NO_EMITTER:
+      return "DYNRAD_NO_EMITTER";
+    case DYNRAD_BUFFER_TOO_SMALL:
+      return "DYNRAD_BUFFER_TOO_SMALL";
+    case DYNRAD_OUT_OF_MEMORY:
+      return "DYNRAD_OUT_OF_MEMORY";
+    case DYNRAD_INTERNAL_ERROR:
+      return "DYNRAD_INTERNAL_ERROR";
   }
   return "unknown status";
 }
@@ -412,9 +419,7 @@ void dynrad_result_destroy(dynrad_result* result) { delete result; }
 
 size_t dynrad_result_vertex_count(const dynrad_result* result) { return result ? result->positions.size() / 3 : 0; }
 
-size_t dynrad_result_triangle_count(const dynrad_result* result) {
-  return result ? result->triangles.size() / 3 : 0;
-}
+size_t dynrad_result_triangle_count(const dynrad_result* result) { return result ? result->triangles.size() / 3 : 0; }
 
 dynrad_status dynrad_result_positions(const dynrad_result* result, double* xyz, size_t capacity) {
   return copy_out(result, &dynrad_result::positions, 3, dynrad_result_vertex_count(result), xyz, capacity,

@@ -10,8 +10,8 @@
 #include "plugin/cli/commands.h"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -43,9 +43,9 @@ Convergence read_report(const std::string& path) {
   try {
     j = nlohmann::json::parse(text.str());
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, 0,
-                     fmt::format("is not valid JSON (at byte {}). Pass a report written by dynrad solve --report.",
-                                 e.byte));
+    throw InputError(
+        path, 0,
+        fmt::format("is not valid JSON (at byte {}). Pass a report written by dynrad solve --report.", e.byte));
   }
   const auto history = j.is_object() ? j.find("unshot_history") : j.end();
   if (!j.is_object() || history == j.end() || !history->is_array())
@@ -78,11 +78,20 @@ std::string escape_xml(const std::string& s) {
   std::string out;
   for (char ch : s) {
     switch (ch) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -124,31 +133,33 @@ std::string render_svg(const Convergence& c, int width, int height, const std::s
   const double magnitude = std::pow(10.0, std::floor(std::log10(raw_step)));
   const double step = raw_step / magnitude < 2 ? magnitude : raw_step / magnitude < 5 ? 2 * magnitude : 5 * magnitude;
   for (double s = 0; s <= shots + 1e-9; s += step)
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{:.0f}</text>\n", x_of(s), bottom + 18,
-                       s);
-  svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
-                     "stroke=\"black\"/>\n",
-                     left, top, right - left, bottom - top);
+    svg +=
+        fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{:.0f}</text>\n", x_of(s), bottom + 18, s);
+  svg += fmt::format(
+      "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
+      "stroke=\"black\"/>\n",
+      left, top, right - left, bottom - top);
   svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">shot</text>\n", (left + right) / 2,
                      bottom + 40);
-  svg += fmt::format("<text x=\"16\" y=\"{:.1f}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {:.1f})\">"
-                     "unshot fraction of emitted power (log)</text>\n",
-                     (top + bottom) / 2, (top + bottom) / 2);
+  svg += fmt::format(
+      "<text x=\"16\" y=\"{:.1f}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {:.1f})\">"
+      "unshot fraction of emitted power (log)</text>\n",
+      (top + bottom) / 2, (top + bottom) / 2);
   if (c.target > 0) {
     const double y = y_of(c.target);
-    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#888\" "
-                       "stroke-dasharray=\"6 4\"><title>converge target {}</title></line>\n",
-                       left, y, right, y, c.target);
+    svg += fmt::format(
+        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#888\" "
+        "stroke-dasharray=\"6 4\"><title>converge target {}</title></line>\n",
+        left, y, right, y, c.target);
   }
   // The curve: point k is the state after shot k + 1.
   svg += "<polyline id=\"unshot\" fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"1.5\" points=\"";
   for (std::size_t k = 0; k < c.unshot.size(); ++k)
     svg += fmt::format("{}{:.2f},{:.2f}", k ? " " : "", x_of(static_cast<double>(k + 1)), y_of(c.unshot[k]));
   svg += "\"/>\n";
-  const std::string caption =
-      fmt::format("{}: {} shots, {} energy transfers, final unshot {:.3g}% ({})", c.method, c.unshot.size(),
-                  c.transfers >= 0 ? fmt::format("{:.0f}", c.transfers) : std::string("?"), 100 * c.unshot.back(),
-                  c.stopped_by);
+  const std::string caption = fmt::format(
+      "{}: {} shots, {} energy transfers, final unshot {:.3g}% ({})", c.method, c.unshot.size(),
+      c.transfers >= 0 ? fmt::format("{:.0f}", c.transfers) : std::string("?"), 100 * c.unshot.back(), c.stopped_by);
   svg += fmt::format("<text x=\"{:.1f}\" y=\"30\" font-size=\"14\">{}</text>\n", left, escape_xml(caption));
   svg += "</svg>\n";
   return svg;
@@ -156,8 +167,7 @@ std::string render_svg(const Convergence& c, int width, int height, const std::s
 
 int run_plot(const PlotOptions& options) {
   const std::string ext = options.output.size() >= 4 ? options.output.substr(options.output.size() - 4) : "";
-  if (ext != ".svg")
-    throw InputError(options.output, 0, "plot writes SVG: give the output a .svg extension.");
+  if (ext != ".svg") throw InputError(options.output, 0, "plot writes SVG: give the output a .svg extension.");
   check_output_writable(options.output);
   const Convergence c = read_report(options.report);
   AtomicFile file(options.output, std::ios::out);
@@ -174,7 +184,9 @@ Command add_plot_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("plot", "Plot a solve's convergence (unshot fraction per shot) as SVG");
   command->add_option("report", options->report, "JSON report written by dynrad solve --report")->required();
   command->add_option("-o,--output", options->output, "SVG file to write")->required();
-  command->add_option("--width", options->width, "Width in pixels")->capture_default_str()->check(CLI::Range(200, 8000));
+  command->add_option("--width", options->width, "Width in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(200, 8000));
   command->add_option("--height", options->height, "Height in pixels")
       ->capture_default_str()
       ->check(CLI::Range(150, 8000));

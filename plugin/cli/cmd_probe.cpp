@@ -25,11 +25,11 @@
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <fstream>
@@ -73,15 +73,17 @@ LitMesh read_lit(const std::string& path) {
   const char* names[3] = {"radiosity_r", "radiosity_g", "radiosity_b"};
   for (int c = 0; c < 3; ++c)
     if (!mesh.get_property_handle(channel[c], names[c]))
-      throw InputError(path, 0, std::string("has no '") + names[c] +
-                                    "' vertex property; probe reads PLY files written by dynrad solve.");
+      throw InputError(
+          path, 0,
+          std::string("has no '") + names[c] + "' vertex property; probe reads PLY files written by dynrad solve.");
   LitMesh lit;
   Bounds bounds;
   for (auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
     lit.positions.emplace_back(p[0], p[1], p[2]);
     bounds.extend(lit.positions.back());
-    lit.radiosity.emplace_back(mesh.property(channel[0], v), mesh.property(channel[1], v), mesh.property(channel[2], v));
+    lit.radiosity.emplace_back(mesh.property(channel[0], v), mesh.property(channel[1], v),
+                               mesh.property(channel[2], v));
   }
   for (auto f : mesh.faces()) {
     std::array<std::uint32_t, 3> t{};
@@ -113,12 +115,12 @@ std::vector<CalculationPoint> read_points(const std::string& path) {
     }
     if (values.empty()) continue;
     if (values.size() != 6)
-      throw InputError(path, line_no,
-                       fmt::format("expected 6 numbers (x y z nx ny nz), found {}.", values.size()));
+      throw InputError(path, line_no, fmt::format("expected 6 numbers (x y z nx ny nz), found {}.", values.size()));
     const Vec3d normal(values[3], values[4], values[5]);
     if (!(normal.norm() > 0))
       throw InputError(path, line_no, "the normal (nx ny nz) is zero; give the direction the surface faces.");
-    points.push_back({Vec3d(values[0], values[1], values[2]), normal.normalized(), fmt::format("{}:{}", path, line_no)});
+    points.push_back(
+        {Vec3d(values[0], values[1], values[2]), normal.normalized(), fmt::format("{}:{}", path, line_no)});
   }
   if (points.empty()) throw InputError(path, 0, "holds no points. Each line is x y z nx ny nz; # starts a comment.");
   return points;
@@ -281,8 +283,7 @@ int run_probe(const ProbeOptions& options) {
   nlohmann::json rows = nlohmann::json::array();
   std::ostringstream table;
   const bool irradiance_known = constant_reflectance || model;
-  table << fmt::format("{:>4} {:>30} {:>9} {:>32} {:>10}", "#", "point", "distance", "radiosity r g b (W/m2)",
-                       "B lum");
+  table << fmt::format("{:>4} {:>30} {:>9} {:>32} {:>10}", "#", "point", "distance", "radiosity r g b (W/m2)", "B lum");
   if (irradiance_known) table << fmt::format(" {:>32} {:>10}", "irradiance r g b (W/m2)", "H lum");
   table << "\n";
   std::size_t missed = 0;
@@ -362,9 +363,9 @@ int run_probe(const ProbeOptions& options) {
   if (options.json) {
     nlohmann::json j = {{"lit", options.lit},
                         {"units", "W/m2; irradiance H = (B - E) / reflectance"},
-                        {"irradiance_from", model ? "model " + options.model
-                                                  : constant_reflectance ? std::string("--reflectance")
-                                                                         : std::string("none")},
+                        {"irradiance_from", model                  ? "model " + options.model
+                                            : constant_reflectance ? std::string("--reflectance")
+                                                                   : std::string("none")},
                         {"points", rows}};
     text = j.dump(2) + "\n";
   } else {
