@@ -81,7 +81,12 @@ struct FaceInfo {
   int nesting = -1;
   bool inside() const { return nesting % 2 == 1; }
 };
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
+// CGAL default-initialises vertex info, which leaves a bare integer with whatever the
+// memory held; a struct with an initialiser starts at 0 ("unset") every time.
+struct CornerInfo {
+  std::uint32_t index_plus_one = 0;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<CornerInfo, K>;
 using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
 using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
@@ -133,8 +138,9 @@ bool triangulate_planar(const std::vector<Vec3d>& pts, const std::vector<std::ui
     for (auto index : poly) {
       const Vec3d& p = pts[index];
       auto vh = cdt.insert(K::Point_2(OpenMesh::dot(p, u), OpenMesh::dot(p, v)));
-      if (vh->info() != 0 && vh->info() != index + 1) return false;  // two corners project onto one point
-      vh->info() = index + 1;  // 0 means "unset"
+      auto& corner = vh->info().index_plus_one;
+      if (corner != 0 && corner != index + 1) return false;  // two corners project onto one point
+      corner = index + 1;
       handles.push_back(vh);
     }
     for (std::size_t i = 0; i < handles.size(); ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
@@ -145,7 +151,8 @@ bool triangulate_planar(const std::vector<Vec3d>& pts, const std::vector<std::ui
   std::size_t produced = 0;
   for (auto f : cdt.finite_face_handles()) {
     if (!f->info().inside()) continue;
-    Triangle t{f->vertex(0)->info() - 1, f->vertex(1)->info() - 1, f->vertex(2)->info() - 1};
+    Triangle t{f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
+               f->vertex(2)->info().index_plus_one - 1};
     out.push_back(t);
     ++produced;
   }

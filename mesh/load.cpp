@@ -6,7 +6,10 @@
 namespace dynrad {
 
 LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
-  const PolygonSoup soup = read_input(path);
+  return load_soup(read_input(path), path, options);
+}
+
+LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const CleanupOptions& options) {
   if (!is_finite(soup.bounds().lo) || !is_finite(soup.bounds().hi))
     throw InputError(path, 0, "has coordinates that are not finite.");
   TriangleSoup clean;

@@ -21,4 +21,10 @@ struct LoadedScene {
 // Throws InputError for unusable input, including a scene that cleanup empties.
 LoadedScene load_scene(const std::string& path, const CleanupOptions& options = {});
 
+// The same for a soup built in memory (the C ABI, host add-ons): cleans it and builds
+// the mesh. Materials must already be checked (check_material in mesh/import.h);
+// `label` stands in for the file name in messages. Throws InputError for non-finite
+// coordinates or a soup that cleanup empties.
+LoadedScene load_soup(const PolygonSoup& soup, const std::string& label, const CleanupOptions& options = {});
+
 }  // namespace dynrad

@@ -10,6 +10,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
+  blender
 )
 
 missing=()

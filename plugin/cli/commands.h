@@ -20,6 +20,8 @@ Command add_info_command(CLI::App& app);
 Command add_clean_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
+Command add_plot_command(CLI::App& app);
+Command add_probe_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

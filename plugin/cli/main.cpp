@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   std::map<CLI::App*, cli::Command> commands;
-  for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command, cli::add_diff_command}) {
+  for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command, cli::add_diff_command,
+                    cli::add_plot_command, cli::add_probe_command}) {
     auto run = add(app);
     commands[app.get_subcommands({}).back()] = run;
   }

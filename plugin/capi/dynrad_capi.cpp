@@ -1,0 +1,457 @@
+// The C ABI (include/dynrad/dynrad.h) over the same pipeline as `dynrad solve`:
+// polygon soup -> cleanup -> scene mesh -> patches -> element hierarchy -> solver ->
+// per-vertex output and display encoding. Every entry point catches everything and
+// turns it into a status and a thread-local message: no exception crosses into C.
+#include "dynrad/dynrad.h"
+
+#include "mesh/error.h"
+#include "mesh/import.h"
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/solver.h"
+#include "radiosity/tonemap.h"
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+// The opaque handles.
+struct dynrad_scene {
+  dynrad::PolygonSoup soup;
+  // Built and checked by dynrad_scene_create; the first solve takes it (a solve refines
+  // its mesh in place), later solves rebuild one from `soup`.
+  mutable std::mutex mutex;
+  mutable std::unique_ptr<dynrad::SceneMesh> unused_mesh;
+};
+
+struct dynrad_options {
+  dynrad::rad::SolveOptions solve;
+  dynrad::rad::RefineSettings refine;
+  double patch_size = 0;  // 0: default for the scene
+  double exposure = 0;    // 0: automatic
+};
+
+struct dynrad_result {
+  std::vector<double> positions;
+  std::vector<std::uint32_t> triangles;
+  std::vector<std::uint32_t> triangle_materials;
+  std::vector<float> radiosity;
+  std::vector<std::uint8_t> display;
+  dynrad_report report{};
+};
+
+namespace {
+
+using namespace dynrad;
+
+// What users read after a failure. thread_local: each thread sees its own last call.
+thread_local std::string t_last_error;
+
+// A failure with its status, thrown inside the library only.
+struct Failure {
+  dynrad_status status;
+  std::string message;
+};
+
+[[noreturn]] void fail(dynrad_status status, std::string message) { throw Failure{status, std::move(message)}; }
+
+void require(bool condition, const char* what) {
+  if (!condition) fail(DYNRAD_INVALID_ARGUMENT, what);
+}
+
+// Runs `body` with every exception mapped to a status and message.
+template <typename Body>
+dynrad_status guarded(Body&& body) noexcept {
+  t_last_error.clear();
+  try {
+    return body();
+  } catch (const Failure& f) {
+    t_last_error = f.message;
+    return f.status;
+  } catch (const InputError& e) {
+    t_last_error = e.what();
+    return DYNRAD_INVALID_INPUT;
+  } catch (const std::bad_alloc&) {
+    t_last_error = "out of memory. Try a larger patch size or a smaller model.";
+    return DYNRAD_OUT_OF_MEMORY;
+  } catch (const std::exception& e) {
+    try {
+      t_last_error = std::string("internal error: ") + e.what() + ". Please report this with the input.";
+    } catch (...) {
+    }
+    return DYNRAD_INTERNAL_ERROR;
+  } catch (...) {
+    t_last_error = "internal error: unknown exception. Please report this with the input.";
+    return DYNRAD_INTERNAL_ERROR;
+  }
+}
+
+constexpr const char* kInputLabel = "scene arrays";
+
+PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const uint32_t* polygon_indices,
+                             const uint32_t* polygon_sizes, size_t polygon_count, const uint32_t* polygon_materials,
+                             const dynrad_material* materials, size_t material_count) {
+  require(vertex_count == 0 || positions, "dynrad_scene_create: positions is NULL.");
+  require(polygon_count == 0 || (polygon_indices && polygon_sizes && polygon_materials),
+          "dynrad_scene_create: polygon_indices, polygon_sizes or polygon_materials is NULL.");
+  require(material_count == 0 || materials, "dynrad_scene_create: materials is NULL.");
+  if (polygon_count == 0) fail(DYNRAD_INVALID_INPUT, "dynrad_scene_create: no polygons, so there is nothing to light.");
+
+  PolygonSoup soup;
+  soup.files = {kInputLabel};
+  soup.group_names = {"scene"};
+  for (size_t i = 0; i < material_count; ++i) {
+    const dynrad_material& m = materials[i];
+    Material material;
+    material.name = m.name && *m.name ? m.name : "material " + std::to_string(i);
+    material.reflectance = Rgb(m.reflectance[0], m.reflectance[1], m.reflectance[2]);
+    material.emission = Rgb(m.emission[0], m.emission[1], m.emission[2]);
+    material.origin = "materials[" + std::to_string(i) + "]";
+    soup.materials.push_back(std::move(material));
+  }
+  soup.points.reserve(vertex_count);
+  for (size_t v = 0; v < vertex_count; ++v) {
+    const Vec3d p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    if (!is_finite(p))
+      fail(DYNRAD_INVALID_INPUT, "dynrad_scene_create: vertex " + std::to_string(v) +
+                                     " has a coordinate that is not a finite number. Check the positions array.");
+    soup.points.push_back(p);
+  }
+  std::vector<char> used(material_count, 0);
+  size_t next = 0;
+  for (size_t i = 0; i < polygon_count; ++i) {
+    const std::string polygon = "dynrad_scene_create: polygon " + std::to_string(i);
+    const uint32_t size = polygon_sizes[i];
+    if (size < 3)
+      fail(DYNRAD_INVALID_INPUT,
+           polygon + " has " + std::to_string(size) + " corners; a polygon needs at least 3. Check polygon_sizes.");
+    std::vector<std::uint32_t> loop(polygon_indices + next, polygon_indices + next + size);
+    next += size;
+    for (uint32_t k = 0; k < size; ++k)
+      if (loop[k] >= vertex_count)
+        fail(DYNRAD_INVALID_INPUT, polygon + ", corner " + std::to_string(k) + ": vertex index " +
+                                       std::to_string(loop[k]) + " is out of range (there are " +
+                                       std::to_string(vertex_count) + " vertices).");
+    if (polygon_materials[i] >= material_count)
+      fail(DYNRAD_INVALID_INPUT, polygon + ": material index " + std::to_string(polygon_materials[i]) +
+                                     " is out of range (there are " + std::to_string(material_count) + " materials).");
+    used[polygon_materials[i]] = 1;
+    soup.polygons.push_back(std::move(loop));
+    soup.material.push_back(polygon_materials[i]);
+    soup.group.push_back(0);
+    soup.origin.push_back(SourceRef{0, 0, static_cast<std::uint32_t>(i)});
+  }
+  bool emits = false;
+  for (size_t i = 0; i < material_count; ++i) {
+    if (!used[i]) continue;
+    check_material(soup.materials[i], "dynrad_scene_create");
+    emits = emits || soup.materials[i].emits();
+  }
+  if (!emits)
+    fail(DYNRAD_NO_EMITTER,
+         "dynrad_scene_create: no polygon's material emits light, so everything would be black. Give at least one "
+         "material an emission above 0.");
+  return soup;
+}
+
+std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup) {
+  LoadedScene loaded = load_soup(soup, kInputLabel);
+  if (!(loaded.mesh->emitting_area() > 0))
+    fail(DYNRAD_NO_EMITTER,
+         "dynrad_scene_create: every emitting polygon is degenerate (no area), so nothing emits light.");
+  return std::move(loaded.mesh);
+}
+
+dynrad_stop_reason stop_reason(const std::string& stopped_by) {
+  if (stopped_by == "iterations") return DYNRAD_STOP_ITERATIONS;
+  if (stopped_by == "time limit") return DYNRAD_STOP_TIME_LIMIT;
+  if (stopped_by == "interrupted") return DYNRAD_STOP_CANCELLED;
+  return DYNRAD_STOP_CONVERGED;
+}
+
+dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress, void* user,
+                     const volatile int* cancel) {
+  std::unique_ptr<SceneMesh> mesh;
+  {
+    std::lock_guard<std::mutex> lock(scene.mutex);
+    mesh = std::move(scene.unused_mesh);
+  }
+  if (!mesh) mesh = build_mesh(scene.soup);
+
+  // As `dynrad solve` does (plugin/cli/cmd_solve.cpp), so that both give one answer.
+  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(*mesh);
+  const PatchingReport patching = make_patches(*mesh, patch_size);
+  RefinementOptions refinement;
+  refinement.min_area = 1e-6 * patch_size * patch_size;
+  ElementHierarchy hierarchy(*mesh, refinement);
+
+  rad::SolveOptions solve_options = options.solve;
+  bool callback_stop = false;
+  solve_options.should_stop = [&] { return callback_stop || (cancel && *cancel != 0); };
+  solve_options.on_shot = [&](std::size_t shot, double unshot) {
+    if (progress && progress(shot, unshot, user) != 0) callback_stop = true;
+  };
+  rad::Solver solver(*mesh, hierarchy, solve_options, options.refine);
+  const rad::SolveReport report = solver.run();
+  const rad::Solver::Output output = solver.output();
+
+  auto result = std::make_unique<dynrad_result>();
+  const std::size_t vertices = output.split.size();
+  result->positions.reserve(3 * vertices);
+  for (auto v : output.split.source) {
+    const Vec3d& p = mesh->mesh().point(v);
+    result->positions.insert(result->positions.end(), {p[0], p[1], p[2]});
+  }
+  result->triangles.assign(output.split.corner.begin(), output.split.corner.end());
+  for (auto f : mesh->mesh().faces()) result->triangle_materials.push_back(mesh->material_id(f));
+
+  std::vector<char> lit(output.emitter.size());
+  for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !output.emitter[x];
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(output.radiosity, lit);
+  const VertexValues values = rad::tone_map(output.radiosity, exposure, "radiosity");
+  result->radiosity.reserve(3 * vertices);
+  result->display.reserve(3 * vertices);
+  for (std::size_t x = 0; x < vertices; ++x) {
+    const Rgb& b = output.radiosity[x];
+    result->radiosity.insert(result->radiosity.end(),
+                             {static_cast<float>(b.r), static_cast<float>(b.g), static_cast<float>(b.b)});
+    result->display.insert(result->display.end(), values.display[x].begin(), values.display[x].end());
+  }
+
+  dynrad_report& r = result->report;
+  r.shots = report.iterations;
+  r.energy_transfers = report.energy_transfers;
+  r.patch_element_transfers = report.patch_element_transfers;
+  r.visibility_rays = report.visibility_rays;
+  r.patches = patching.patches;
+  r.elements = report.elements;
+  r.seconds = report.seconds;
+  r.unshot_fraction = report.unshot_fraction;
+  r.exposure = exposure;
+  r.patch_size = patch_size;
+  for (int c = 0; c < 3; ++c) {
+    r.emitted[c] = report.energy.emitted[c];
+    r.absorbed[c] = report.energy.absorbed[c];
+    r.escaped[c] = report.energy.escaped[c];
+  }
+  r.stopped_by = stop_reason(report.stopped_by);
+  return result.release();
+}
+
+template <typename T>
+dynrad_status copy_out(const dynrad_result* result, const std::vector<T> dynrad_result::*member, std::size_t per_item,
+                       std::size_t items, T* out, size_t capacity, const char* function) {
+  return guarded([&] {
+    require(result && out, "a result or buffer pointer is NULL.");
+    const std::vector<T>& data = result->*member;
+    if (capacity < items)
+      fail(DYNRAD_BUFFER_TOO_SMALL, std::string(function) + ": the buffer holds " + std::to_string(capacity) +
+                                        " items but " + std::to_string(items) +
+                                        " are needed; size it from dynrad_result_vertex_count or _triangle_count.");
+    if (items) std::memcpy(out, data.data(), items * per_item * sizeof(T));
+    return DYNRAD_OK;
+  });
+}
+
+dynrad_status set_option(dynrad_options* options, bool valid, const char* message) {
+  return guarded([&] {
+    require(options, "the options handle is NULL.");
+    require(valid, message);
+    return DYNRAD_OK;
+  });
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* dynrad_version(void) { return DYNRAD_VERSION; }
+
+int dynrad_abi_version(void) { return DYNRAD_ABI_VERSION; }
+
+const char* dynrad_status_name(dynrad_status status) {
+  switch (status) {
+    case DYNRAD_OK:
+      return "DYNRAD_OK";
+    case DYNRAD_STOPPED:
+      return "DYNRAD_STOPPED";
+    case DYNRAD_INVALID_ARGUMENT:
+      return "DYNRAD_INVALID_ARGUMENT";
+    case DYNRAD_INVALID_INPUT:
+      return "DYNRAD_INVALID_INPUT";
+    case DYNRAD_NO_EMITTER:
+      return "DYNRAD_NO_EMITTER";
+    case DYNRAD_BUFFER_TOO_SMALL:
+      return "DYNRAD_BUFFER_TOO_SMALL";
+    case DYNRAD_OUT_OF_MEMORY:
+      return "DYNRAD_OUT_OF_MEMORY";
+    case DYNRAD_INTERNAL_ERROR:
+      return "DYNRAD_INTERNAL_ERROR";
+  }
+  return "unknown status";
+}
+
+const char* dynrad_last_error(void) { return t_last_error.c_str(); }
+
+dynrad_status dynrad_scene_create(const double* positions, size_t vertex_count, const uint32_t* polygon_indices,
+                                  const uint32_t* polygon_sizes, size_t polygon_count,
+                                  const uint32_t* polygon_materials, const dynrad_material* materials,
+                                  size_t material_count, dynrad_scene** out_scene) {
+  return guarded([&] {
+    require(out_scene, "dynrad_scene_create: out_scene is NULL.");
+    *out_scene = nullptr;
+    auto scene = std::make_unique<dynrad_scene>();
+    scene->soup = soup_from_arrays(positions, vertex_count, polygon_indices, polygon_sizes, polygon_count,
+                                   polygon_materials, materials, material_count);
+    scene->unused_mesh = build_mesh(scene->soup);
+    *out_scene = scene.release();
+    return DYNRAD_OK;
+  });
+}
+
+void dynrad_scene_destroy(dynrad_scene* scene) { delete scene; }
+
+dynrad_status dynrad_options_create(dynrad_options** out_options) {
+  return guarded([&] {
+    require(out_options, "dynrad_options_create: out_options is NULL.");
+    *out_options = new dynrad_options();
+    return DYNRAD_OK;
+  });
+}
+
+void dynrad_options_destroy(dynrad_options* options) { delete options; }
+
+dynrad_status dynrad_options_set_method(dynrad_options* options, const char* method) {
+  return guarded([&] {
+    require(options && method, "dynrad_options_set_method: options or method is NULL.");
+    try {
+      options->refine.method = rad::parse_method(method);
+    } catch (const std::invalid_argument& e) {
+      fail(DYNRAD_INVALID_ARGUMENT, std::string("dynrad_options_set_method: ") + e.what() + ".");
+    }
+    return DYNRAD_OK;
+  });
+}
+
+dynrad_status dynrad_options_set_max_level(dynrad_options* options, int max_level) {
+  const dynrad_status s =
+      set_option(options, max_level >= 0 && max_level <= 12, "dynrad_options_set_max_level: must be in 0..12.");
+  if (s == DYNRAD_OK) options->refine.max_level = max_level;
+  return s;
+}
+
+dynrad_status dynrad_options_set_patch_size(dynrad_options* options, double patch_size) {
+  const dynrad_status s = set_option(options, std::isfinite(patch_size) && patch_size >= 0,
+                                     "dynrad_options_set_patch_size: must be a finite number >= 0 (0: default).");
+  if (s == DYNRAD_OK) options->patch_size = patch_size;
+  return s;
+}
+
+dynrad_status dynrad_options_set_converge(dynrad_options* options, double converge) {
+  const dynrad_status s =
+      set_option(options, converge >= 0 && converge < 1, "dynrad_options_set_converge: must be in [0, 1).");
+  if (s == DYNRAD_OK) options->solve.converge = converge;
+  return s;
+}
+
+dynrad_status dynrad_options_set_iterations(dynrad_options* options, uint64_t iterations) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->solve.max_iterations = static_cast<std::size_t>(iterations);
+  return s;
+}
+
+dynrad_status dynrad_options_set_time_limit(dynrad_options* options, double seconds) {
+  const dynrad_status s = set_option(options, std::isfinite(seconds) && seconds >= 0,
+                                     "dynrad_options_set_time_limit: must be a finite number >= 0 (0: no limit).");
+  if (s == DYNRAD_OK) options->solve.time_limit = seconds;
+  return s;
+}
+
+dynrad_status dynrad_options_set_threads(dynrad_options* options, int threads) {
+  const dynrad_status s =
+      set_option(options, threads >= 0 && threads <= 1024, "dynrad_options_set_threads: must be in 0..1024.");
+  if (s == DYNRAD_OK) options->solve.threads = threads;
+  return s;
+}
+
+dynrad_status dynrad_options_set_seed(dynrad_options* options, uint64_t seed) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->solve.seed = seed;
+  return s;
+}
+
+dynrad_status dynrad_options_set_threshold(dynrad_options* options, double threshold) {
+  const dynrad_status s = set_option(options, std::isfinite(threshold) && threshold > 0,
+                                     "dynrad_options_set_threshold: must be a finite number > 0.");
+  if (s == DYNRAD_OK) {
+    options->refine.adaptive_threshold = threshold;
+    options->refine.dynamic.cumulated_gradient = options->refine.dynamic.current_gradient =
+        options->refine.dynamic.current_ratio = threshold;
+  }
+  return s;
+}
+
+dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure) {
+  const dynrad_status s = set_option(options, std::isfinite(exposure) && exposure >= 0,
+                                     "dynrad_options_set_exposure: must be a finite number >= 0 (0: automatic).");
+  if (s == DYNRAD_OK) options->exposure = exposure;
+  return s;
+}
+
+dynrad_status dynrad_solve(const dynrad_scene* scene, const dynrad_options* options, dynrad_progress_fn progress,
+                           void* user, const volatile int* cancel, dynrad_result** out_result) {
+  if (out_result) *out_result = nullptr;
+  return guarded([&] {
+    require(scene && out_result, "dynrad_solve: scene or out_result is NULL.");
+    const dynrad_options defaults;
+    dynrad_result* result = solve(*scene, options ? *options : defaults, progress, user, cancel);
+    *out_result = result;
+    return result->report.stopped_by == DYNRAD_STOP_CANCELLED ? DYNRAD_STOPPED : DYNRAD_OK;
+  });
+}
+
+void dynrad_result_destroy(dynrad_result* result) { delete result; }
+
+size_t dynrad_result_vertex_count(const dynrad_result* result) { return result ? result->positions.size() / 3 : 0; }
+
+size_t dynrad_result_triangle_count(const dynrad_result* result) { return result ? result->triangles.size() / 3 : 0; }
+
+dynrad_status dynrad_result_positions(const dynrad_result* result, double* xyz, size_t capacity) {
+  return copy_out(result, &dynrad_result::positions, 3, dynrad_result_vertex_count(result), xyz, capacity,
+                  "dynrad_result_positions");
+}
+
+dynrad_status dynrad_result_triangles(const dynrad_result* result, uint32_t* indices, size_t capacity) {
+  return copy_out(result, &dynrad_result::triangles, 3, dynrad_result_triangle_count(result), indices, capacity,
+                  "dynrad_result_triangles");
+}
+
+dynrad_status dynrad_result_triangle_materials(const dynrad_result* result, uint32_t* materials, size_t capacity) {
+  return copy_out(result, &dynrad_result::triangle_materials, 1, dynrad_result_triangle_count(result), materials,
+                  capacity, "dynrad_result_triangle_materials");
+}
+
+dynrad_status dynrad_result_radiosity(const dynrad_result* result, float* rgb, size_t capacity) {
+  return copy_out(result, &dynrad_result::radiosity, 3, dynrad_result_vertex_count(result), rgb, capacity,
+                  "dynrad_result_radiosity");
+}
+
+dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity) {
+  return copy_out(result, &dynrad_result::display, 3, dynrad_result_vertex_count(result), rgb, capacity,
+                  "dynrad_result_display");
+}
+
+dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report) {
+  return guarded([&] {
+    require(result && report, "dynrad_result_report: result or report is NULL.");
+    *report = result->report;
+    return DYNRAD_OK;
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,195 @@
+/* dynrad.h: the dynrad radiosity engine through a C interface.
+ *
+ * Purpose: light a polygon model given as plain arrays and read back the refined mesh
+ * with per-vertex radiosity, from any language that can call C (Python ctypes, C#,
+ * host applications' plug-ins).
+ *
+ * Conventions, for every function:
+ * - Handles (dynrad_scene, dynrad_options, dynrad_result) are opaque; each has a
+ *   create and a destroy function. destroy accepts NULL.
+ * - Buffers belong to the caller. Results are copied out in two steps: ask for a size
+ *   (dynrad_result_vertex_count, dynrad_result_triangle_count), allocate, then copy.
+ *   Every copy function takes the capacity of the buffer, in elements (vertices or
+ *   triangles), and returns DYNRAD_BUFFER_TOO_SMALL without writing when it is short.
+ * - Functions that can fail return a dynrad_status. On failure, dynrad_last_error()
+ *   gives a message for people (naming the polygon, vertex or material at fault and
+ *   what to do); it is per thread and valid until the next dynrad call on that thread.
+ *   No C++ exception ever leaves the library.
+ * - Units: emission is radiant exitance (W/m^2 leaving the front side); reflectance
+ *   is diffuse albedo per channel, linear, in [0, 1); radiosity comes back in W/m^2.
+ *   Lengths are in any unit: radiosity does not depend on it.
+ * - A polygon's front is the side from which its corners run counter-clockwise. Only
+ *   the front emits and reflects.
+ * - The library is thread-safe for distinct handles. One scene may be solved from
+ *   several threads at once.
+ */
+#ifndef DYNRAD_DYNRAD_H
+#define DYNRAD_DYNRAD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32) && defined(DYNRAD_BUILDING_LIBRARY)
+#define DYNRAD_API __declspec(dllexport)
+#elif defined(_WIN32)
+#define DYNRAD_API __declspec(dllimport)
+#elif defined(__GNUC__)
+#define DYNRAD_API __attribute__((visibility("default")))
+#else
+#define DYNRAD_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The layout of the structs below; dynrad_abi_version() must return the same. */
+#define DYNRAD_ABI_VERSION 1
+
+typedef enum dynrad_status {
+  DYNRAD_OK = 0,
+  /* dynrad_solve only: the caller stopped the solve (progress callback or cancel
+   * flag). The result is valid and holds the solution so far. */
+  DYNRAD_STOPPED = 1,
+  DYNRAD_INVALID_ARGUMENT = -1, /* a NULL handle or pointer, an unknown name, a value out of range */
+  DYNRAD_INVALID_INPUT = -2,    /* scene arrays: bad index, non-finite number, unphysical material */
+  DYNRAD_NO_EMITTER = -3,       /* no polygon emits light: everything would be black */
+  DYNRAD_BUFFER_TOO_SMALL = -4, /* a copy function's capacity is below the size query's answer */
+  DYNRAD_OUT_OF_MEMORY = -5,
+  DYNRAD_INTERNAL_ERROR = -6 /* a bug: please report it with the input */
+} dynrad_status;
+
+/* "0.1.0": the library's version. */
+DYNRAD_API const char* dynrad_version(void);
+/* DYNRAD_ABI_VERSION of the library; callers check it against their header's. */
+DYNRAD_API int dynrad_abi_version(void);
+/* "DYNRAD_OK", "DYNRAD_INVALID_INPUT", ...; "unknown status" otherwise. */
+DYNRAD_API const char* dynrad_status_name(dynrad_status status);
+/* The message of this thread's last failed call, or "" after a success. Never NULL. */
+DYNRAD_API const char* dynrad_last_error(void);
+
+/* ------------------------------------------------------------------------------ */
+/* Scenes */
+
+typedef struct dynrad_material {
+  double reflectance[3]; /* linear rgb, each in [0, 1) */
+  double emission[3];    /* W/m^2, each >= 0 */
+  const char* name;      /* for messages; may be NULL ("material <index>") */
+} dynrad_material;
+
+typedef struct dynrad_scene dynrad_scene;
+
+/* Builds a scene from a polygon soup and repairs it as the command line does (merges
+ * close points, triangulates, snaps T-junctions, cuts non-manifold edges).
+ * - positions: vertex_count * 3 doubles, x y z per vertex.
+ * - polygon_sizes: corners of each of the polygon_count polygons (>= 3 each).
+ * - polygon_indices: the polygons' vertex indices one after the other, as many as
+ *   the sum of polygon_sizes, counter-clockwise seen from the front.
+ * - polygon_materials: per polygon, an index into materials (material_count of them).
+ * The arrays are copied; the caller may free them after the call.
+ * DYNRAD_INVALID_INPUT names the first vertex, polygon or material at fault;
+ * DYNRAD_NO_EMITTER when no polygon's material emits. */
+DYNRAD_API dynrad_status dynrad_scene_create(const double* positions, size_t vertex_count,
+                                             const uint32_t* polygon_indices, const uint32_t* polygon_sizes,
+                                             size_t polygon_count, const uint32_t* polygon_materials,
+                                             const dynrad_material* materials, size_t material_count,
+                                             dynrad_scene** out_scene);
+DYNRAD_API void dynrad_scene_destroy(dynrad_scene* scene);
+
+/* ------------------------------------------------------------------------------ */
+/* Options: the command line's `solve` options, with its defaults. */
+
+typedef struct dynrad_options dynrad_options;
+
+DYNRAD_API dynrad_status dynrad_options_create(dynrad_options** out_options);
+DYNRAD_API void dynrad_options_destroy(dynrad_options* options);
+/* "progressive" (default), "adaptive" or "dynamic". */
+DYNRAD_API dynrad_status dynrad_options_set_method(dynrad_options* options, const char* method);
+/* Paper levels (1 -> 4 splits) allowed below a patch, 0..12; default 3. */
+DYNRAD_API dynrad_status dynrad_options_set_max_level(dynrad_options* options, int max_level);
+/* Longest patch edge in model units; 0 (default): a tenth of the bounding-box diagonal. */
+DYNRAD_API dynrad_status dynrad_options_set_patch_size(dynrad_options* options, double patch_size);
+/* Stop when unshot power is below this fraction of emitted power, in [0, 1); default 0.01. */
+DYNRAD_API dynrad_status dynrad_options_set_converge(dynrad_options* options, double converge);
+/* Stop after this many shots; 0 (default): no limit. */
+DYNRAD_API dynrad_status dynrad_options_set_iterations(dynrad_options* options, uint64_t iterations);
+/* Stop after this many seconds; 0 (default): no limit. */
+DYNRAD_API dynrad_status dynrad_options_set_time_limit(dynrad_options* options, double seconds);
+/* Worker threads, 0..1024; 0 (default): all cores. Results do not depend on it. */
+DYNRAD_API dynrad_status dynrad_options_set_threads(dynrad_options* options, int threads);
+/* Seed of all ray sampling; default 1. Same scene, options and seed: same result. */
+DYNRAD_API dynrad_status dynrad_options_set_seed(dynrad_options* options, uint64_t seed);
+/* Oracle threshold (> 0) for adaptive and dynamic; default 0.25. */
+DYNRAD_API dynrad_status dynrad_options_set_threshold(dynrad_options* options, double threshold);
+/* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
+ * command line (the 99th percentile of lit vertices maps to 0.9). */
+DYNRAD_API dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure);
+
+/* ------------------------------------------------------------------------------ */
+/* Solving */
+
+typedef struct dynrad_result dynrad_result;
+
+/* Called after every shot with the number of shots so far and the fraction of the
+ * emitted power not yet shot. Return non-zero to stop at this shot boundary. */
+typedef int (*dynrad_progress_fn)(uint64_t shot, double unshot_fraction, void* user);
+
+/* Lights `scene` with `options` (NULL: defaults). `progress` (may be NULL) is called on
+ * the calling thread. `cancel` (may be NULL) is read at every shot boundary; another
+ * thread sets *cancel to non-zero to stop there. Either way of stopping returns
+ * DYNRAD_STOPPED with a valid *out_result holding the solution so far; otherwise
+ * DYNRAD_OK once a stop rule (converge, iterations, time limit) holds. On any other
+ * status *out_result is set to NULL. The scene is not changed and may be solved again. */
+DYNRAD_API dynrad_status dynrad_solve(const dynrad_scene* scene, const dynrad_options* options,
+                                      dynrad_progress_fn progress, void* user, const volatile int* cancel,
+                                      dynrad_result** out_result);
+DYNRAD_API void dynrad_result_destroy(dynrad_result* result);
+
+/* The refined mesh: vertices are split where surfaces meet at a crease or change
+ * material, so each carries the value of one surface. 0 for a NULL result. */
+DYNRAD_API size_t dynrad_result_vertex_count(const dynrad_result* result);
+DYNRAD_API size_t dynrad_result_triangle_count(const dynrad_result* result);
+/* x y z per vertex (3 doubles). */
+DYNRAD_API dynrad_status dynrad_result_positions(const dynrad_result* result, double* xyz, size_t capacity);
+/* Three vertex indices per triangle, counter-clockwise seen from the front. */
+DYNRAD_API dynrad_status dynrad_result_triangles(const dynrad_result* result, uint32_t* indices, size_t capacity);
+/* Per triangle: the index of its material in the scene's materials array. */
+DYNRAD_API dynrad_status dynrad_result_triangle_materials(const dynrad_result* result, uint32_t* materials,
+                                                          size_t capacity);
+/* Per vertex: radiosity, linear rgb (3 floats), W/m^2. */
+DYNRAD_API dynrad_status dynrad_result_radiosity(const dynrad_result* result, float* rgb, size_t capacity);
+/* Per vertex: display colour (3 bytes), sRGB-encoded radiosity x exposure, the same
+ * bytes the command line writes as red/green/blue in its PLY. */
+DYNRAD_API dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity);
+
+typedef enum dynrad_stop_reason {
+  DYNRAD_STOP_CONVERGED = 0, /* unshot power fell below the converge fraction */
+  DYNRAD_STOP_ITERATIONS = 1,
+  DYNRAD_STOP_TIME_LIMIT = 2,
+  DYNRAD_STOP_CANCELLED = 3 /* progress callback or cancel flag */
+} dynrad_stop_reason;
+
+typedef struct dynrad_report {
+  uint64_t shots;                   /* progressive refinement iterations */
+  uint64_t energy_transfers;        /* sender-to-element transfers, counted as the paper does */
+  uint64_t patch_element_transfers; /* of those, to elements below patch level */
+  uint64_t visibility_rays;
+  uint64_t patches;
+  uint64_t elements;
+  double seconds;         /* solve time, without loading and repair */
+  double unshot_fraction; /* of the emitted power, at the end */
+  double exposure;        /* used by dynrad_result_display */
+  double patch_size;      /* the one used, model units */
+  double emitted[3];      /* power per channel (W when lengths are metres) */
+  double absorbed[3];
+  double escaped[3]; /* left through openings */
+  int stopped_by;    /* a dynrad_stop_reason */
+} dynrad_report;
+
+DYNRAD_API dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DYNRAD_DYNRAD_H */

@@ -1,0 +1,354 @@
+/* The C ABI from C: boxes built from arrays, solved, checked against closed forms and
+ * energy facts; the error paths; stopping early. Compiled as C99 so that the header
+ * is proven usable from C. Exit status 0 when every check holds. */
+#include <dynrad/dynrad.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures = 0;
+
+#define CHECK(condition, ...)                                          \
+  do {                                                                 \
+    if (!(condition)) {                                                \
+      ++failures;                                                      \
+      fprintf(stderr, "%s:%d: check failed: %s\n  ", __FILE__, __LINE__, #condition); \
+      fprintf(stderr, __VA_ARGS__);                                    \
+      fprintf(stderr, "\n");                                           \
+    }                                                                  \
+  } while (0)
+
+/* A closed box [0, sx] x [0, sy] x [0, sz], faces pointing inward; face k gets
+ * materials[k] for -x, +x, -y, +y, -z, +z. */
+typedef struct Box {
+  double positions[8 * 3];
+  uint32_t indices[6 * 4];
+  uint32_t sizes[6];
+  uint32_t face_materials[6];
+} Box;
+
+static void make_box(Box* box, double sx, double sy, double sz, const uint32_t materials[6]) {
+  static const uint32_t loops[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                       {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  for (int i = 0; i < 8; ++i) {
+    box->positions[3 * i + 0] = (i & 1) ? sx : 0;
+    box->positions[3 * i + 1] = (i & 2) ? sy : 0;
+    box->positions[3 * i + 2] = (i & 4) ? sz : 0;
+  }
+  for (int k = 0; k < 6; ++k) {
+    memcpy(box->indices + 4 * k, loops[k], sizeof loops[k]);
+    box->sizes[k] = 4;
+    box->face_materials[k] = materials[k];
+  }
+}
+
+static dynrad_material grey(double reflectance, double emission, const char* name) {
+  dynrad_material m;
+  for (int c = 0; c < 3; ++c) {
+    m.reflectance[c] = reflectance;
+    m.emission[c] = emission;
+  }
+  m.name = name;
+  return m;
+}
+
+static dynrad_scene* create_box(const Box* box, const dynrad_material* materials, size_t count) {
+  dynrad_scene* scene = NULL;
+  const dynrad_status s =
+      dynrad_scene_create(box->positions, 8, box->indices, box->sizes, 6, box->face_materials, materials, count, &scene);
+  CHECK(s == DYNRAD_OK, "dynrad_scene_create: %s: %s", dynrad_status_name(s), dynrad_last_error());
+  return scene;
+}
+
+static dynrad_options* options_with(double patch_size, double converge) {
+  dynrad_options* options = NULL;
+  CHECK(dynrad_options_create(&options) == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_patch_size(options, patch_size) == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_converge(options, converge) == DYNRAD_OK, "%s", dynrad_last_error());
+  return options;
+}
+
+static void test_version(void) {
+  CHECK(dynrad_abi_version() == DYNRAD_ABI_VERSION, "library ABI %d, header %d", dynrad_abi_version(),
+        DYNRAD_ABI_VERSION);
+  CHECK(strcmp(dynrad_version(), DYNRAD_EXPECTED_VERSION) == 0, "version '%s'", dynrad_version());
+  CHECK(strcmp(dynrad_status_name(DYNRAD_NO_EMITTER), "DYNRAD_NO_EMITTER") == 0, "status name");
+}
+
+/* Every surface emits E and reflects rho: B = E / (1 - rho) at every vertex, and the
+ * display colours, one exposure for a uniform field, are all equal. */
+static void test_furnace(void) {
+  const uint32_t all[6] = {0, 0, 0, 0, 0, 0};
+  const dynrad_material glow = grey(0.5, 1.0, "glow");
+  Box box;
+  make_box(&box, 2, 1, 1, all);
+  dynrad_scene* scene = create_box(&box, &glow, 1);
+  dynrad_options* options = options_with(0.3, 1e-5);
+  CHECK(dynrad_options_set_method(options, "dynamic") == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_max_level(options, 1) == DYNRAD_OK, "%s", dynrad_last_error());
+  dynrad_result* result = NULL;
+  const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+  CHECK(s == DYNRAD_OK, "solve: %s: %s", dynrad_status_name(s), dynrad_last_error());
+  if (result) {
+    const size_t n = dynrad_result_vertex_count(result);
+    CHECK(n >= 8, "%zu vertices", n);
+    float* b = malloc(3 * n * sizeof *b);
+    uint8_t* display = malloc(3 * n);
+    CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(dynrad_result_display(result, display, n) == DYNRAD_OK, "%s", dynrad_last_error());
+    int off = 0;
+    for (size_t i = 0; i < 3 * n; ++i)
+      if (fabs(b[i] - 2.0) > 0.01 * 2.0) ++off;
+    CHECK(off == 0, "%d of %zu channel values differ from E/(1-rho) = 2 by more than 1%%", off, 3 * n);
+    for (size_t i = 1; i < n; ++i)
+      if (abs(display[3 * i] - display[0]) > 1) ++off;
+    CHECK(off == 0, "display colours of a uniform field differ");
+    dynrad_report report;
+    CHECK(dynrad_result_report(result, &report) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(report.stopped_by == DYNRAD_STOP_CONVERGED, "stopped_by %d", report.stopped_by);
+    CHECK(report.unshot_fraction <= 1e-5, "unshot %g", report.unshot_fraction);
+    CHECK(report.shots > 0 && report.energy_transfers >= report.shots && report.visibility_rays > 0,
+          "shots %llu, transfers %llu, rays %llu", (unsigned long long)report.shots,
+          (unsigned long long)report.energy_transfers, (unsigned long long)report.visibility_rays);
+    CHECK(fabs(report.patch_size - 0.3) < 1e-12, "patch size %g", report.patch_size);
+    CHECK(report.escaped[1] <= 1e-9 * report.emitted[1], "a closed box lets %g escape", report.escaped[1]);
+    /* Emitted power = E x total area = 1 x (2 x 1 + 2 x 1 + 1 x 1) x 2 = 10 */
+    CHECK(fabs(report.emitted[0] - 10.0) < 1e-9, "emitted %g, expected 10", report.emitted[0]);
+    free(b);
+    free(display);
+  }
+  dynrad_result_destroy(result);
+  dynrad_options_destroy(options);
+  dynrad_scene_destroy(scene);
+}
+
+/* A closed room lit by its ceiling, rho = 0.6 everywhere: sum of B x area over the
+ * refined mesh = emitted power / (1 - rho). Checks positions, triangles and values
+ * together. The same scene solved twice gives the same answer. */
+static void test_lit_room_energy(void) {
+  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
+  const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling")};
+  Box box;
+  make_box(&box, 3, 2, 1.5, faces);
+  dynrad_scene* scene = create_box(&box, materials, 2);
+  dynrad_options* options = options_with(0.6, 1e-4);
+  double totals[2] = {0, 0};
+  for (int run = 0; run < 2; ++run) {
+    dynrad_result* result = NULL;
+    const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+    CHECK(s == DYNRAD_OK, "solve %d: %s: %s", run, dynrad_status_name(s), dynrad_last_error());
+    if (!result) continue;
+    const size_t n = dynrad_result_vertex_count(result), t = dynrad_result_triangle_count(result);
+    double* xyz = malloc(3 * n * sizeof *xyz);
+    uint32_t* tri = malloc(3 * t * sizeof *tri);
+    uint32_t* material = malloc(t * sizeof *material);
+    float* b = malloc(3 * n * sizeof *b);
+    CHECK(dynrad_result_positions(result, xyz, n) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(dynrad_result_triangles(result, tri, t) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(dynrad_result_triangle_materials(result, material, t) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
+    double area_sum = 0, ceiling_area = 0;
+    for (size_t f = 0; f < t; ++f) {
+      const double* p[3];
+      double mean = 0;
+      for (int k = 0; k < 3; ++k) {
+        CHECK(tri[3 * f + k] < n, "triangle %zu corner %d: index %u", f, k, tri[3 * f + k]);
+        if (tri[3 * f + k] >= n) return;
+        p[k] = xyz + 3 * tri[3 * f + k];
+        mean += b[3 * tri[3 * f + k] + 1] / 3.0;
+      }
+      const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+      const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+      const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+      const double area = 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+      area_sum += area;
+      totals[run] += mean * area;
+      if (material[f] == 1) {
+        ceiling_area += area;
+        CHECK(fabs(p[0][2] - 1.5) < 1e-12 && cz < 0, "a ceiling triangle is not at z = 1.5 facing down");
+      }
+    }
+    CHECK(fabs(area_sum - 2 * (3 * 2 + 3 * 1.5 + 2 * 1.5)) < 1e-9, "mesh area %g, expected 27", area_sum);
+    CHECK(fabs(ceiling_area - 6.0) < 1e-9, "ceiling area %g, expected 6", ceiling_area);
+    const double emitted = 10.0 * 6.0;
+    CHECK(fabs(totals[run] - emitted / (1 - 0.6)) < 0.01 * emitted / (1 - 0.6),
+          "sum B A = %g, expected %g within 1%%", totals[run], emitted / (1 - 0.6));
+    dynrad_report report;
+    dynrad_result_report(result, &report);
+    CHECK(fabs(report.emitted[1] - emitted) < 1e-9, "emitted %g", report.emitted[1]);
+    CHECK(fabs(report.absorbed[1] - emitted) < 1e-4 * emitted, "absorbed %g of %g", report.absorbed[1], emitted);
+    free(xyz);
+    free(tri);
+    free(material);
+    free(b);
+    dynrad_result_destroy(result);
+  }
+  CHECK(totals[0] == totals[1], "two solves of one scene differ: %.17g and %.17g", totals[0], totals[1]);
+  dynrad_options_destroy(options);
+  dynrad_scene_destroy(scene);
+}
+
+/* Stopping early: the progress callback's return value, and a cancel flag. */
+typedef struct Progress {
+  uint64_t calls, last_shot, stop_at;
+  double last_unshot;
+  volatile int* cancel; /* set at stop_at instead of returning non-zero, when not NULL */
+} Progress;
+
+static int on_progress(uint64_t shot, double unshot_fraction, void* user) {
+  Progress* p = (Progress*)user;
+  ++p->calls;
+  if (unshot_fraction > p->last_unshot + 1e-12) p->last_unshot = 2; /* marks a rise: checked below */
+  else p->last_unshot = unshot_fraction;
+  p->last_shot = shot;
+  if (shot < p->stop_at) return 0;
+  if (p->cancel) {
+    *p->cancel = 1;
+    return 0;
+  }
+  return 1;
+}
+
+static void test_stopping(void) {
+  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
+  const dynrad_material materials[2] = {grey(0.7, 0.0, "wall"), grey(0.5, 5.0, "lamp")};
+  Box box;
+  make_box(&box, 2, 2, 2, faces);
+  dynrad_scene* scene = create_box(&box, materials, 2);
+  dynrad_options* options = options_with(0.25, 1e-9);
+  volatile int cancel = 0;
+  for (int by_flag = 0; by_flag < 2; ++by_flag) {
+    Progress progress = {0, 0, 5, 1.0, by_flag ? &cancel : NULL};
+    dynrad_result* result = NULL;
+    const dynrad_status s = dynrad_solve(scene, options, on_progress, &progress, &cancel, &result);
+    CHECK(s == DYNRAD_STOPPED, "%s: %s, %s", by_flag ? "flag" : "callback", dynrad_status_name(s),
+          dynrad_last_error());
+    CHECK(progress.calls == 5 && progress.last_shot == 5, "%llu calls, last shot %llu",
+          (unsigned long long)progress.calls, (unsigned long long)progress.last_shot);
+    CHECK(progress.last_unshot <= 1.0, "unshot fraction rose during the solve");
+    dynrad_report report;
+    CHECK(dynrad_result_report(result, &report) == DYNRAD_OK, "no report after a stop: %s", dynrad_last_error());
+    CHECK(report.shots == 5 && report.stopped_by == DYNRAD_STOP_CANCELLED, "shots %llu, stopped_by %d",
+          (unsigned long long)report.shots, report.stopped_by);
+    CHECK(report.unshot_fraction > 1e-3, "unshot %g after 5 shots", report.unshot_fraction);
+    CHECK(dynrad_result_vertex_count(result) > 0, "a stopped solve has no vertices");
+    dynrad_result_destroy(result);
+  }
+  /* A flag already set: no shot at all, and the (dark) solution so far all the same. */
+  dynrad_result* result = NULL;
+  CHECK(cancel == 1, "the callback did not set the flag");
+  CHECK(dynrad_solve(scene, options, NULL, NULL, &cancel, &result) == DYNRAD_STOPPED, "%s", dynrad_last_error());
+  dynrad_report report;
+  CHECK(dynrad_result_report(result, &report) == DYNRAD_OK && report.shots == 0, "shots %llu",
+        (unsigned long long)report.shots);
+  dynrad_result_destroy(result);
+  dynrad_options_destroy(options);
+  dynrad_scene_destroy(scene);
+}
+
+/* Expects `status` and a message containing `needle`. */
+static void expect_error(dynrad_status status, dynrad_status expected, const char* needle, const char* what) {
+  CHECK(status == expected, "%s: got %s, expected %s", what, dynrad_status_name(status), dynrad_status_name(expected));
+  CHECK(strstr(dynrad_last_error(), needle) != NULL, "%s: message '%s' does not mention '%s'", what,
+        dynrad_last_error(), needle);
+}
+
+static void test_errors(void) {
+  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
+  dynrad_material materials[2] = {grey(0.5, 0.0, "plaster"), grey(0.5, 10.0, "lamp")};
+  Box box;
+  make_box(&box, 1, 1, 1, faces);
+  dynrad_scene* scene = (dynrad_scene*)&box; /* must be overwritten with NULL on failure */
+  const size_t m = 2;
+
+  materials[0].reflectance[1] = 1.0;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "'plaster'", "reflectance 1");
+  CHECK(scene == NULL, "a failed create left a handle");
+  CHECK(strstr(dynrad_last_error(), "below 1") != NULL, "message '%s' does not say what to do", dynrad_last_error());
+  materials[0].reflectance[1] = NAN;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "'plaster'", "NaN reflectance");
+  materials[0].reflectance[1] = 0.5;
+  materials[1].emission[2] = -1;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "'lamp'", "negative emission");
+  materials[1].emission[2] = 10;
+
+  box.positions[3 * 5 + 1] = NAN;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "vertex 5", "NaN position");
+  box.positions[3 * 5 + 1] = 0;
+
+  box.indices[4 * 3 + 2] = 8;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "polygon 3, corner 2: vertex index 8 is out of range", "index out of range");
+  box.indices[4 * 3 + 2] = 7;
+
+  box.face_materials[4] = 2;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_INVALID_INPUT, "polygon 4: material index 2", "material out of range");
+  box.face_materials[4] = 0;
+
+  box.face_materials[5] = 0;
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   &scene),
+               DYNRAD_NO_EMITTER, "emits", "no emitter");
+  box.face_materials[5] = 1;
+
+  expect_error(dynrad_scene_create(box.positions, 8, box.indices, box.sizes, 6, box.face_materials, materials, m,
+                                   NULL),
+               DYNRAD_INVALID_ARGUMENT, "NULL", "NULL out_scene");
+
+  dynrad_options* options = NULL;
+  CHECK(dynrad_options_create(&options) == DYNRAD_OK, "%s", dynrad_last_error());
+  expect_error(dynrad_options_set_method(options, "radiant"), DYNRAD_INVALID_ARGUMENT,
+               "available: progressive, adaptive, dynamic", "unknown method");
+  expect_error(dynrad_options_set_converge(options, 1.5), DYNRAD_INVALID_ARGUMENT, "converge", "converge 1.5");
+  expect_error(dynrad_options_set_max_level(options, -1), DYNRAD_INVALID_ARGUMENT, "max_level", "level -1");
+  expect_error(dynrad_solve(NULL, options, NULL, NULL, NULL, NULL), DYNRAD_INVALID_ARGUMENT, "NULL", "NULL scene");
+
+  /* After all those failures, a valid scene still works, and a short buffer is refused. */
+  scene = create_box(&box, materials, m);
+  CHECK(dynrad_options_set_iterations(options, 3) == DYNRAD_OK, "%s", dynrad_last_error());
+  dynrad_result* result = NULL;
+  CHECK(dynrad_solve(scene, options, NULL, NULL, NULL, &result) == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(strcmp(dynrad_last_error(), "") == 0, "a success left the message '%s'", dynrad_last_error());
+  const size_t n = dynrad_result_vertex_count(result);
+  float* b = malloc(3 * n * sizeof *b);
+  expect_error(dynrad_result_radiosity(result, b, n - 1), DYNRAD_BUFFER_TOO_SMALL, "needed", "short buffer");
+  dynrad_report report;
+  CHECK(dynrad_result_report(result, &report) == DYNRAD_OK && report.stopped_by == DYNRAD_STOP_ITERATIONS &&
+            report.shots == 3,
+        "stopped_by %d after %llu shots", report.stopped_by, (unsigned long long)report.shots);
+  CHECK(dynrad_result_vertex_count(NULL) == 0, "NULL result has vertices");
+  free(b);
+  dynrad_result_destroy(result);
+  dynrad_options_destroy(options);
+  dynrad_scene_destroy(scene);
+  dynrad_scene_destroy(NULL);
+  dynrad_result_destroy(NULL);
+  dynrad_options_destroy(NULL);
+}
+
+int main(void) {
+  test_version();
+  test_furnace();
+  test_lit_room_energy();
+  test_stopping();
+  test_errors();
+  if (failures) {
+    fprintf(stderr, "capi_test: %d checks failed\n", failures);
+    return 1;
+  }
+  printf("capi_test: all checks passed\n");
+  return 0;
+}

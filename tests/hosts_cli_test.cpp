@@ -1,0 +1,233 @@
+// The command line's host-facing commands: `plot` (convergence SVG), `probe`
+// (calculation points), and the anytime stop of `solve` under signals.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <nlohmann/json.hpp>
+
+#include <regex>
+#include <sstream>
+
+namespace dynrad {
+namespace {
+
+using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// The numbers of the polyline `id="unshot"`, as (x, y) pairs.
+std::vector<std::pair<double, double>> polyline_points(const std::string& svg) {
+  std::smatch m;
+  std::vector<std::pair<double, double>> points;
+  if (!std::regex_search(svg, m, std::regex("<polyline id=\"unshot\"[^>]* points=\"([^\"]*)\""))) return points;
+  std::istringstream in(m[1].str());
+  for (std::string pair; in >> pair;) {
+    const auto comma = pair.find(',');
+    points.emplace_back(std::stod(pair.substr(0, comma)), std::stod(pair.substr(comma + 1)));
+  }
+  return points;
+}
+
+TEST(PlotCommand, OnePointPerShotFallingWithUnshotPower) {
+  test::TempDir dir;
+  auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("lit.ply") +
+                            "' --iterations 37 --report '" + dir.path("report.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::run_dynrad("plot '" + dir.path("report.json") + "' -o '" + dir.path("plot.svg") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string svg = test::read_text(dir.path("plot.svg"));
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  const auto points = polyline_points(svg);
+  ASSERT_EQ(points.size(), 37u);
+  // SVG y grows downwards: falling unshot power is a growing y; shots grow along x.
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    EXPECT_GT(points[k].first, points[k - 1].first) << k;
+    EXPECT_GE(points[k].second, points[k - 1].second - 1e-9) << k;
+  }
+  EXPECT_GT(points.back().second, points.front().second);
+  const auto report = nlohmann::json::parse(test::read_text(dir.path("report.json")));
+  const std::string transfers = std::to_string(report["energy_transfers"].get<std::uint64_t>());
+  EXPECT_NE(svg.find("37 shots, " + transfers + " energy transfers"), std::string::npos) << svg.substr(0, 2000);
+}
+
+TEST(PlotCommand, RefusesBadReportsAndLeavesNoOutput) {
+  test::TempDir dir;
+  const std::string existing = dir.write("plot.svg", "old");
+  struct Case {
+    std::string name, content, message;
+  };
+  for (const Case& c : {Case{"broken.json", "{\"unshot_history\": [0.5, ", "is not valid JSON"},
+                        Case{"other.json", "{\"method\": \"dynamic\"}", "has no 'unshot_history' array"},
+                        Case{"damaged.json", "{\"unshot_history\": [0.5, \"x\"]}", "unshot_history[1] is not a number"},
+                        Case{"empty.json", "{\"unshot_history\": []}", "nothing to plot"}}) {
+    const std::string input = dir.write(c.name, c.content);
+    const auto r = test::run_dynrad("plot '" + input + "' -o '" + existing + "'");
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(input + ": "), std::string::npos) << r.output;  // names the file
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+    EXPECT_EQ(test::read_text(existing), "old");
+  }
+  const auto r = test::run_dynrad("plot '" + dir.path("missing.json") + "' -o '" + dir.path("new.svg") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("cannot be read"), std::string::npos) << r.output;
+  EXPECT_FALSE(test::file_exists(dir.path("new.svg")));
+}
+
+// A closed box that glows everywhere (E = 1, rho = 0.5), faces inward.
+std::string furnace_obj(const test::TempDir& dir) {
+  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  return dir.write("furnace.obj",
+                   "mtllib furnace.mtl\nusemtl glow\n"
+                   "v 0 0 0\nv 2 0 0\nv 0 1 0\nv 2 1 0\nv 0 0 1\nv 2 0 1\nv 0 1 1\nv 2 1 1\n"
+                   "f 1 3 7 5\nf 2 6 8 4\nf 1 5 6 2\nf 3 4 8 7\nf 1 2 4 3\nf 5 7 8 6\n");
+}
+
+// In the furnace B = E / (1 - rho) = 2 everywhere and H = (B - E) / rho = 2 (B = E +
+// rho H). --reflectance assumes no emission, so it reads H = B / rho = 4 instead.
+TEST(ProbeCommand, FurnaceBoxGivesClosedFormRadiosityAndIrradiance) {
+  test::TempDir dir;
+  const std::string model = furnace_obj(dir);
+  auto r = test::run_dynrad("solve '" + model + "' -o '" + dir.path("lit.ply") + "' --patch-size 0.3 --converge 1e-4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string points = dir.write("points.txt",
+                                       "# x y z nx ny nz\n"
+                                       "1 0.5 0  0 0 1   # floor\n"
+                                       "\n"
+                                       "0.3 0.2 1  0 0 -1  # ceiling\n"
+                                       "2 0.7 0.4  -1 0 0 # end wall\n"
+                                       "1.5 0.5 0.25  0 0 1 # above the floor\n");
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + points + "' --model '" + model +
+                       "' --grid 0.25,0.25,1.75,0.75,0.5,0.5 --json -o '" + dir.path("probe.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(test::read_text(dir.path("probe.json")));
+  ASSERT_EQ(j["points"].size(), 4u + 4u * 2u);  // the file's points, then a 4 x 2 grid
+  for (const auto& p : j["points"]) {
+    ASSERT_FALSE(p["radiosity"].is_null()) << p.dump();
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(p["radiosity"][c].get<double>(), 2.0, 0.01 * 2.0) << p.dump();
+      EXPECT_NEAR(p["irradiance"][c].get<double>(), 2.0, 0.02 * 2.0) << p.dump();
+    }
+    EXPECT_EQ(p["material"], "glow");
+  }
+  EXPECT_EQ(j["points"][0]["source"], points + ":2");
+  EXPECT_NEAR(j["points"][3]["distance"].get<double>(), 0.25, 1e-6);
+  EXPECT_NEAR(j["points"][4]["distance"].get<double>(), 0.5, 1e-6);  // the grid's height above the floor
+  EXPECT_NEAR(j["points"][4]["surface_point"][2].get<double>(), 0.0, 1e-6);
+
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + points + "' --reflectance 0.5 --json -o '" +
+                       dir.path("assumed.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto assumed = nlohmann::json::parse(test::read_text(dir.path("assumed.json")));
+  for (const auto& p : assumed["points"]) EXPECT_NEAR(p["irradiance"][1].get<double>(), 4.0, 0.01 * 4.0) << p.dump();
+}
+
+// At a triangle's centroid, probing the solve's own PLY gives the mean of its corner
+// values: the interpolation reads exactly what the solver wrote.
+TEST(ProbeCommand, ReadsTheLitMeshItself) {
+  test::TempDir dir;
+  auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("lit.ply") +
+                            "' --iterations 150");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ReadMesh mesh;
+  OpenMesh::IO::Options io = OpenMesh::IO::Options::Custom;
+  ASSERT_TRUE(OpenMesh::IO::read_mesh(mesh, dir.path("lit.ply"), io));
+  OpenMesh::VPropHandleT<float> green;
+  ASSERT_TRUE(mesh.get_property_handle(green, "radiosity_g"));
+  mesh.request_face_normals();
+  mesh.update_face_normals();
+  std::string points;
+  std::vector<double> expected;
+  for (auto f : mesh.faces()) {
+    if (f.idx() % 23 != 0) continue;
+    const auto c = mesh.calc_face_centroid(f), n = mesh.normal(f);
+    double mean = 0;
+    for (auto v : mesh.fv_range(f)) mean += mesh.property(green, v) / 3.0;
+    expected.push_back(mean);
+    points += std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]) + " " +
+              std::to_string(n[0]) + " " + std::to_string(n[1]) + " " + std::to_string(n[2]) + "\n";
+  }
+  ASSERT_GT(expected.size(), 40u);
+  dir.write("points.txt", points);
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") + "' --json -o '" +
+                       dir.path("probe.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(test::read_text(dir.path("probe.json")));
+  ASSERT_EQ(j["points"].size(), expected.size());
+  double largest = 0;
+  for (const double e : expected) largest = std::max(largest, e);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const auto& p = j["points"][i];
+    ASSERT_FALSE(p["radiosity"].is_null()) << p.dump();
+    // Centroids printed with 6 decimals: the reading moves by at most the gradient
+    // times 1e-6 mm.
+    EXPECT_NEAR(p["radiosity"][1].get<double>(), expected[i], 1e-4 * largest + 1e-4 * expected[i]) << p.dump();
+    EXPECT_LT(p["distance"].get<double>(), 1e-3) << p.dump();
+  }
+}
+
+TEST(ProbeCommand, BadPointsNameTheLineAndWriteNothing) {
+  test::TempDir dir;
+  const std::string model = furnace_obj(dir);
+  ASSERT_EQ(test::run_dynrad("solve '" + model + "' -o '" + dir.path("lit.ply") + "' --iterations 5").exit_code, 0);
+  struct Case {
+    std::string points, message;
+  };
+  for (const Case& c : {Case{"1 0.5 0 0 0 1\n1 0.5 0 0 0\n", "points.txt:2: expected 6 numbers"},
+                        Case{"# only comments\n", "holds no points"},
+                        Case{"1 0.5 nan 0 0 1\n", "points.txt:1: 'nan' is not a finite number"},
+                        Case{"1 0.5 0 0 0 0\n", "points.txt:1: the normal (nx ny nz) is zero"},
+                        Case{"5 5 5 0 0 1\n", "no point found a lit surface"}}) {
+    dir.write("points.txt", c.points);
+    const auto r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") +
+                                    "' -o '" + dir.path("out.txt") + "'");
+    EXPECT_EQ(r.exit_code, 2) << c.points << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+    EXPECT_FALSE(test::file_exists(dir.path("out.txt")));
+  }
+  dir.write("points.txt", "1 0.5 0 0 0 1\n");
+  auto r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") +
+                            "' --reflectance 0.5 --model '" + model + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("not both"), std::string::npos) << r.output;
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") +
+                       "' --reflectance 1.2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("(0, 1)"), std::string::npos) << r.output;
+  r = test::run_dynrad("probe '" + model + "' --points '" + dir.path("points.txt") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(model), std::string::npos) << r.output;
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --grid 0,0,1,1,0,0.5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("step > 0"), std::string::npos) << r.output;
+}
+
+// Anytime stop: the first SIGINT stops at the next shot boundary and writes the
+// solution with a warning giving the unshot fraction (exit 3); a second SIGINT ends
+// the program at once, writing nothing.
+TEST(SolveSignals, FirstInterruptWritesWithUnshotFractionSecondQuits) {
+  test::TempDir dir;
+  const std::string solve = std::string("'") + DYNRAD_EXE + "' solve '" +
+                            test::sample("globillum_room_obstructed.obj") +
+                            "' --patch-size 0.15 --converge 1e-9 --time-limit 60 -o ";
+  auto r = test::run_shell("( " + solve + "'" + dir.path("once.ply") +
+                           "' & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo exit=$? )");
+  EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("interrupted: wrote the solution so far, with [0-9.]+% of the "
+                                                     "emitted power not yet shot")))
+      << r.output;
+  EXPECT_TRUE(test::file_exists(dir.path("once.ply")));
+
+  // The second signal 20 ms after the first: the first is handled by then (the
+  // process is still alive), and finishing the shot and writing 76k triangles takes
+  // longer than that.
+  r = test::run_shell("( " + solve + "'" + dir.path("twice.ply") +
+                      "' & pid=$!; sleep 2; kill -INT $pid; sleep 0.02; kill -0 $pid && echo alive-after-first; "
+                      "kill -INT $pid; wait $pid; echo exit=$? )");
+  EXPECT_NE(r.output.find("alive-after-first"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output;  // 128 + SIGINT: killed by the signal
+  EXPECT_FALSE(test::file_exists(dir.path("twice.ply")));
+}
+
+}  // namespace
+}  // namespace dynrad
