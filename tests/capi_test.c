@@ -88,6 +88,12 @@ static void test_furnace(void) {
   dynrad_options* options = options_with(0.3, 1e-5);
   CHECK(dynrad_options_set_method(options, "dynamic") == DYNRAD_OK, "%s", dynrad_last_error());
   CHECK(dynrad_options_set_max_level(options, 1) == DYNRAD_OK, "%s", dynrad_last_error());
+  /* The push-down oracle with every transfer's error bounded (README: the defaults are
+   * biased in a furnace). */
+  CHECK(dynrad_options_set_oracle(options, "pushdown") == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_oracle_threshold(options, "cumulated_gradient", 0) == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_oracle_threshold(options, "pushdown_floor", 0) == DYNRAD_OK, "%s", dynrad_last_error());
+  CHECK(dynrad_options_set_oracle_threshold(options, "pushdown_error", 0.02) == DYNRAD_OK, "%s", dynrad_last_error());
   dynrad_result* result = NULL;
   const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
   CHECK(s == DYNRAD_OK, "solve: %s: %s", dynrad_status_name(s), dynrad_last_error());
@@ -313,6 +319,10 @@ static void test_errors(void) {
   expect_error(dynrad_options_set_method(options, "radiant"), DYNRAD_INVALID_ARGUMENT,
                "available: progressive, adaptive, dynamic", "unknown method");
   expect_error(dynrad_options_set_converge(options, 1.5), DYNRAD_INVALID_ARGUMENT, "converge", "converge 1.5");
+  expect_error(dynrad_options_set_oracle(options, "oracle of delphi"), DYNRAD_INVALID_ARGUMENT, "available: pushdown, paper",
+               "unknown oracle");
+  expect_error(dynrad_options_set_oracle_threshold(options, "gradient", 0.1), DYNRAD_INVALID_ARGUMENT,
+               "pushdown_error", "unknown threshold name");
   expect_error(dynrad_options_set_max_level(options, -1), DYNRAD_INVALID_ARGUMENT, "max_level", "level -1");
   expect_error(dynrad_solve(NULL, options, NULL, NULL, NULL, NULL), DYNRAD_INVALID_ARGUMENT, "NULL", "NULL scene");
 

@@ -396,6 +396,43 @@ dynrad_status dynrad_options_set_threshold(dynrad_options* options, double thres
   return s;
 }
 
+dynrad_status dynrad_options_set_oracle(dynrad_options* options, const char* oracle) {
+  const bool known = oracle && (std::string(oracle) == "pushdown" || std::string(oracle) == "paper");
+  const dynrad_status s =
+      set_option(options, known, "dynrad_options_set_oracle: unknown oracle; available: pushdown, paper.");
+  if (s == DYNRAD_OK)
+    options->refine.dynamic.variant = std::string(oracle) == "paper" ? rad::OracleThresholds::Variant::paper
+                                                                     : rad::OracleThresholds::Variant::pushdown;
+  return s;
+}
+
+dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value) {
+  dynrad_status s = set_option(options, name && std::isfinite(value) && value >= 0,
+                               "dynrad_options_set_oracle_threshold: name is NULL or value is not a finite number >= 0.");
+  if (s != DYNRAD_OK) return s;
+  rad::OracleThresholds& t = options->refine.dynamic;
+  const std::string n = name;
+  double* target = n == "cumulated_gradient" ? (t.variant == rad::OracleThresholds::Variant::paper
+                                                    ? &t.cumulated_gradient
+                                                    : &t.pushdown_cumulated_gradient)
+                   : n == "current_gradient" ? &t.current_gradient
+                   : n == "current_ratio"    ? &t.current_ratio
+                   : n == "pushdown_error"   ? &t.pushdown
+                   : n == "pushdown_floor"   ? &t.pushdown_floor
+                                             : nullptr;
+  s = set_option(options, target != nullptr,
+                 "dynrad_options_set_oracle_threshold: unknown name; available: cumulated_gradient, current_gradient, "
+                 "current_ratio, pushdown_error, pushdown_floor.");
+  if (s == DYNRAD_OK) *target = value;
+  return s;
+}
+
+dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->refine.max_elements = static_cast<std::size_t>(max_elements);
+  return s;
+}
+
 dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure) {
   const dynrad_status s = set_option(options, std::isfinite(exposure) && exposure >= 0,
                                      "dynrad_options_set_exposure: must be a finite number >= 0 (0: automatic).");

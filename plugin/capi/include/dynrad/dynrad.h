@@ -119,8 +119,16 @@ DYNRAD_API dynrad_status dynrad_options_set_time_limit(dynrad_options* options, 
 DYNRAD_API dynrad_status dynrad_options_set_threads(dynrad_options* options, int threads);
 /* Seed of all ray sampling; default 1. Same scene, options and seed: same result. */
 DYNRAD_API dynrad_status dynrad_options_set_seed(dynrad_options* options, uint64_t seed);
-/* Oracle threshold (> 0) for adaptive and dynamic; default 0.25. */
+/* Adaptive's gradient threshold (> 0), also all three of the paper oracle's; default 0.25. */
 DYNRAD_API dynrad_status dynrad_options_set_threshold(dynrad_options* options, double threshold);
+/* Dynamic's oracle: "pushdown" (default) or "paper" (Figure 6); see the README. */
+DYNRAD_API dynrad_status dynrad_options_set_oracle(dynrad_options* options, const char* oracle);
+/* One of dynamic's thresholds (>= 0), by the command line's option name without
+ * dashes: "cumulated_gradient" (of the oracle chosen so far), "current_gradient",
+ * "current_ratio", "pushdown_error", "pushdown_floor". */
+DYNRAD_API dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value);
+/* Stop refining once the element tree holds this many elements; 0 (default): no limit. */
+DYNRAD_API dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
  * command line (the 99th percentile of lit vertices maps to 0.9). */
 DYNRAD_API dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure);
