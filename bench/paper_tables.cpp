@@ -39,7 +39,7 @@ struct Run {
 };
 
 // Dynamic's oracle and new-element rule for a run: the solver's defaults, changed by
-// a spec "variant:c:k:floor:init" (any suffix optional; c is the variant's cumulated
+// a spec "variant:c:k:floor:init:ambient" (any suffix optional; c is the variant's cumulated
 // gradient threshold, k the paper's other two or the push-down error) or by the
 // environment: DYNRAD_ORACLE=paper|pushdown, DYNRAD_CUMULATED=c, DYNRAD_K=k,
 // DYNRAD_FLOOR=f, DYNRAD_NEW_ELEMENTS=interpolate|constant|gather.
@@ -49,9 +49,10 @@ struct DynamicSettings {
   bool paper() const { return oracle.variant == rad::OracleThresholds::Variant::paper; }
   std::string name() const {
     char text[160];
-    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g f=%.3g %s", paper() ? "paper" : "pushdown",
+    std::snprintf(text, sizeof text, "%s c=%.3g k=%.3g f=%.3g%s %s", paper() ? "paper" : "pushdown",
                   paper() ? oracle.cumulated_gradient : oracle.pushdown_cumulated_gradient,
                   paper() ? oracle.current_gradient : oracle.pushdown, paper() ? 0.0 : oracle.pushdown_floor,
+                  oracle.pushdown_ambient ? "+amb" : "",
                   new_elements == rad::RefineSettings::NewElements::interpolate ? "interpolate"
                   : new_elements == rad::RefineSettings::NewElements::constant  ? "constant"
                                                                                : "gather");
@@ -70,6 +71,7 @@ struct DynamicSettings {
         else oracle.pushdown = x;
         break;
       case 3: oracle.pushdown_floor = x; break;
+      case 5: oracle.pushdown_ambient = x != 0; break;
       case 4:
         new_elements = value == "constant" ? rad::RefineSettings::NewElements::constant
                        : value == "gather" ? rad::RefineSettings::NewElements::gather
@@ -171,8 +173,8 @@ double ratio(std::uint64_t a, std::uint64_t b) { return b ? static_cast<double>(
 }  // namespace
 
 // bench_paper_tables sweep ROWS SPEC...: for each row (t1: Table 1 at 1000 iterations;
-// 2, 128: Table 3's rows), adaptive once, then dynamic with each SPEC
-// ("variant:c:k:floor:init", see parse_settings), all against the same reference.
+// t2: Table 2 at level 4; 2, 128: Table 3's rows), adaptive once, then dynamic with each SPEC
+// ("variant:c:k:floor:init:ambient", see parse_settings), all against the same reference.
 int sweep(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr, "usage: bench_paper_tables sweep t1,2,128 SPEC...\n");
@@ -186,6 +188,7 @@ int sweep(int argc, char** argv) {
     std::size_t iterations;
   };
   const Case cases[] = {{"t1", "paper_sphere_room.obj", 3, 1000},
+                        {"t2", "paper_sphere_room.obj", 4, 100},
                         {"2", "paper_empty_room_small_source.obj", 4, 1000},
                         {"128", "paper_empty_room_front_wall.obj", 4, 1000}};
   std::printf("%5s %-36s %12s %9s %8s %8s %8s %8s %6s\n", "row", "dynamic", "transfers", "elements", "speedup",

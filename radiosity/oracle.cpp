@@ -25,7 +25,7 @@ double current_ratio(const OracleInputs& in) {
 }
 double pushdown_gradient(const OracleInputs& in, double floor) {
   const double hi = std::max({in.cumulated[0].luminance(), in.cumulated[1].luminance(), in.cumulated[2].luminance()});
-  const double scale = std::max(in.current_peak, floor * hi);
+  const double scale = std::max(in.current_peak, floor * (hi + in.ambient));
   return scale > 0 ? in.pushdown_error / scale : 0.0;
 }
 

@@ -51,6 +51,10 @@ struct OracleThresholds {
   double pushdown_cumulated_gradient = 0.05;
   double pushdown = 0.05;
   double pushdown_floor = 0.02;
+  // Measure the floor against the element's expected final brightness, B plus its
+  // share of the light not yet shot (Cohen et al. 1988's ambient term), instead of
+  // B so far: early in a solve B is small and every sender looks important.
+  bool pushdown_ambient = false;
 };
 
 struct OracleInputs {
@@ -64,6 +68,9 @@ struct OracleInputs {
   double pushdown_error = 0;
   // Largest dB (luminance) at the corners and the midpoint estimates.
   double current_peak = 0;
+  // The element's reflectance times the ambient radiosity (luminance), when the floor
+  // uses it; 0 otherwise.
+  double ambient = 0;
 };
 
 double cumulated_gradient(const OracleInputs& in);

@@ -65,6 +65,7 @@ bool Solver::shoot_once() {
   // gather the shots before this one and then receive this one like the rest.)
 
   const int max_generation = 2 * refine_.max_level;
+  const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // visited, the shot goes on below
   // Adaptive: children of a leaf the oracle split in this shot; the walk splits them
@@ -108,8 +109,10 @@ bool Solver::shoot_once() {
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
       if (refine_.method == Method::dynamic && can_split && !odd &&
-          refine_.dynamic.variant == OracleThresholds::Variant::pushdown)
+          refine_.dynamic.variant == OracleThresholds::Variant::pushdown) {
         estimate_pushdown_error(q, patch.reflectance, in);
+        in.ambient = (patch.reflectance * ambient_now).luminance();
+      }
       bool go_on = false;
       switch (refine_.method) {
         case Method::progressive:

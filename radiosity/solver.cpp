@@ -151,6 +151,21 @@ bool Solver::refinement_allowed() {
   return false;
 }
 
+Rgb Solver::ambient() const {
+  Rgb unshot, reflected;
+  double area = 0;
+  for (const Patch& p : patches_) {
+    unshot += p.unshot * p.area;
+    reflected += p.reflectance * p.area;
+    area += p.area;
+  }
+  if (!(area > 0)) return Rgb();
+  const Rgb mean_reflectance = reflected * (1.0 / area);
+  auto factor = [](double rho) { return rho < 1 ? 1 / (1 - rho) : 0.0; };
+  return Rgb(unshot.r / area * factor(mean_reflectance.r), unshot.g / area * factor(mean_reflectance.g),
+             unshot.b / area * factor(mean_reflectance.b));
+}
+
 double Solver::unshot_fraction() const { return sum(report_.energy.unshot) / emitted_total_; }
 
 // Fraction of the power patch `id` shoots that reaches no front face (it leaves the
@@ -185,34 +200,34 @@ void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
   struct Todo {
     VertexHandle v;
     Vec3d x, normal;
-    std::uint64_t key;
+    std::uint32_t plane;
   };
   std::vector<Todo> todo;
   for (ElementId e : elements) {
     const Element& el = hierarchy_.element(e);
     for (VertexHandle v : el.corners) {
-      const std::uint64_t k = key(v, patches_[el.patch].plane);
-      if (form_factor_.emplace(k, CornerFormFactor{}).second)
-        todo.push_back({v, evaluation_point(v, e), patches_[el.patch].normal, k});
+      if (form_factor_.emplace(static_cast<std::uint32_t>(v.idx()), patches_[el.patch].plane).second)
+        todo.push_back({v, evaluation_point(v, e), patches_[el.patch].normal, patches_[el.patch].plane});
     }
   }
   std::vector<CornerFormFactor> values(todo.size());
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
     values[n].visible = point_form_factor(todo[n].v, todo[n].x, todo[n].normal, sender_, &values[n].unoccluded);
   });
-  for (std::size_t n = 0; n < todo.size(); ++n) form_factor_[todo[n].key] = values[n];
+  for (std::size_t n = 0; n < todo.size(); ++n)
+    *form_factor_.find(static_cast<std::uint32_t>(todo[n].v.idx()), todo[n].plane) = values[n];
 }
 
 const Vec3d& Solver::evaluation_point(VertexHandle v, ElementId e) {
-  const std::uint64_t k = key(v, patches_[hierarchy_.element(e).patch].plane);
-  auto it = evaluation_point_.find(k);
-  if (it == evaluation_point_.end()) {
+  const auto [point, added] =
+      evaluation_point_.emplace(static_cast<std::uint32_t>(v.idx()), patches_[hierarchy_.element(e).patch].plane);
+  if (added) {
     // A step into the element: at a junction, the limit from inside the surface, and no
     // ray starting in a neighbouring wall's plane.
     const Vec3d position = hierarchy_.position(v);
-    it = evaluation_point_.emplace(k, position + (hierarchy_.centroid(e) - position) * 1e-2).first;
+    *point = position + (hierarchy_.centroid(e) - position) * 1e-2;
   }
-  return it->second;
+  return *point;
 }
 
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
@@ -282,9 +297,13 @@ void Solver::gather_new_elements(std::size_t first) {
   }
 }
 
-double Solver::form_factor(ElementId e, int corner) const {
+const Solver::CornerFormFactor& Solver::corner_form_factor(ElementId e, int corner) const {
   const Element& el = hierarchy_.element(e);
-  return form_factor_.at(key(el.corners[corner], patches_[el.patch].plane)).visible;
+  return *form_factor_.find(static_cast<std::uint32_t>(el.corners[corner].idx()), patches_[el.patch].plane);
+}
+
+double Solver::form_factor(ElementId e, int corner) const {
+  return corner_form_factor(e, corner).visible;
 }
 
 // Mean form factor over element q, for the power it receives. The three corner values
@@ -292,11 +311,10 @@ double Solver::form_factor(ElementId e, int corner) const {
 // same way at every scale; Lambert's closed form at the centroid (no rays: scaled by
 // the corners' visible fractions) gives the integral a second, interior sample.
 double Solver::element_form_factor(ElementId q) const {
-  const Element& el = hierarchy_.element(q);
   const Patch& sender = patches_[sender_];
   double corners = 0, unoccluded = 0;
   for (int k = 0; k < 3; ++k) {
-    const CornerFormFactor& f = form_factor_.at(key(el.corners[k], patches_[el.patch].plane));
+    const CornerFormFactor& f = corner_form_factor(q, k);
     corners += f.visible;
     unoccluded += f.unoccluded;
   }
@@ -316,8 +334,8 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
   if (!(shot > 0)) return;
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
-    const CornerFormFactor& fa = form_factor_.at(key(el.corners[k], patches_[el.patch].plane));
-    const CornerFormFactor& fb = form_factor_.at(key(el.corners[l], patches_[el.patch].plane));
+    const CornerFormFactor& fa = corner_form_factor(q, k);
+    const CornerFormFactor& fb = corner_form_factor(q, l);
     const double a = in.current[k].luminance(), b = in.current[l].luminance();
     const double unoccluded = fa.unoccluded + fb.unoccluded;
     const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;

@@ -15,6 +15,7 @@
 #include "mesh/vertex_split.h"
 #include "radiosity/oracle.h"
 #include "radiosity/solve_types.h"
+#include "radiosity/vertex_plane_map.h"
 #include "radiosity/visibility.h"
 
 #include <memory>
@@ -138,11 +139,15 @@ class Solver {
   // This shot: sender and form factors by (vertex, patch).
   std::uint32_t sender_ = 0;
   Rgb current_shot_;  // the radiosity the sender shoots in this shot
+  // Cohen et al. 1988's ambient radiosity: unshot power per area of the whole scene,
+  // times the mean interreflection factor 1 / (1 - mean reflectance).
+  Rgb ambient() const;
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
   };
-  std::unordered_map<std::uint64_t, CornerFormFactor> form_factor_;
-  std::unordered_map<std::uint64_t, Vec3d> evaluation_point_;  // by (vertex, facing), whole solve
+  VertexPlaneMap<CornerFormFactor> form_factor_;  // this shot
+  VertexPlaneMap<Vec3d> evaluation_point_;        // whole solve
+  const CornerFormFactor& corner_form_factor(ElementId e, int corner) const;
   double emitted_total_ = 0;
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;

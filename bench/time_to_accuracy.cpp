@@ -1,0 +1,108 @@
+// Time to accuracy on the 1990 comparison room: error against a converged fine
+// solution, at the published 0.5 m grid on floor and ceiling, against wall time.
+//
+// Reference: progressive refinement on 0.5 m patches to 0.01% unshot (bench_accuracy
+// shows values there within 0.2% of 0.25 m patches). Each configuration is solved to a
+// series of unshot targets; error is the mean over the grid points of |B - B_ref| /
+// B_ref (green channel), wall time is the solve's own (loading and patching excluded,
+// they are printed once).
+//
+// Usage: bench_time_to_accuracy [threads]   (default: all cores)
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/probe.h"
+#include "radiosity/solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace dynrad;
+
+struct Point {
+  Vec3d p, n;
+};
+
+std::vector<Point> grid() {
+  std::vector<Point> points;
+  for (double x = 0.25; x < 10; x += 0.5)
+    for (double y = 0.25; y < 6; y += 0.5) {
+      points.push_back({{x, y, 0}, {0, 0, 1}});
+      points.push_back({{x, y, 3}, {0, 0, -1}});
+    }
+  return points;
+}
+
+struct Result {
+  rad::SolveReport report;
+  std::vector<double> values;  // per grid point
+};
+
+Result solve(double patch_size, rad::Method method, int max_level, double converge, int threads) {
+  const std::string path = std::string(DYNRAD_SAMPLES_DIR) + "/globillum_room.obj";
+  LoadedScene loaded = load_scene(path);
+  make_patches(*loaded.mesh, patch_size);
+  ElementHierarchy hierarchy(*loaded.mesh);
+  rad::SolveOptions options;
+  options.converge = converge;
+  options.threads = threads;
+  rad::RefineSettings refine;
+  refine.method = method;
+  refine.max_level = max_level;
+  rad::Solver solver(*loaded.mesh, hierarchy, options, refine);
+  Result r;
+  r.report = solver.run();
+  const rad::Solver::Output out = solver.output();
+  for (const Point& p : grid()) {
+    const auto value = rad::probe(*loaded.mesh, out.split, out.radiosity, p.p, p.n);
+    r.values.push_back(value ? value->g : std::nan(""));
+  }
+  return r;
+}
+
+double mean_error(const std::vector<double>& values, const std::vector<double>& reference) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (std::isfinite(values[i]) && std::isfinite(reference[i]) && reference[i] > 0) {
+      sum += std::abs(values[i] - reference[i]) / reference[i];
+      ++n;
+    }
+  return n ? sum / n : std::nan("");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int threads = argc > 1 ? std::atoi(argv[1]) : 0;
+  const Result reference = solve(0.5, rad::Method::progressive, 0, 1e-4, threads);
+  std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
+              reference.report.iterations, reference.report.seconds, reference.values.size());
+  struct Config {
+    const char* name;
+    double patch;
+    rad::Method method;
+    int level;
+  };
+  const Config configs[] = {
+      {"progressive 2.0 m", 2.0, rad::Method::progressive, 0},
+      {"progressive 1.0 m", 1.0, rad::Method::progressive, 0},
+      {"dynamic 2.0 m, level 2", 2.0, rad::Method::dynamic, 1},
+      {"dynamic 2.0 m, level 3", 2.0, rad::Method::dynamic, 2},
+      {"dynamic 1.0 m, level 2", 1.0, rad::Method::dynamic, 1},
+  };
+  std::printf("%-26s %8s %7s %9s %10s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error");
+  for (const Config& c : configs)
+    for (double converge : {0.1, 0.05, 0.02, 0.01, 0.005}) {
+      const Result r = solve(c.patch, c.method, c.level, converge, threads);
+      std::printf("%-26s %7.1f%% %7zu %9zu %10.3f %8.2f%%\n", c.name, 100 * converge, r.report.iterations,
+                  r.report.elements, r.report.seconds, 100 * mean_error(r.values, reference.values));
+      std::fflush(stdout);
+    }
+  return 0;
+}
