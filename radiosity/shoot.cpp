@@ -178,6 +178,7 @@ bool Solver::shoot_once() {
   patches_[i].shot += shot;
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
+  report_.transfers_history.push_back(report_.energy_transfers);
   return true;
 }
 

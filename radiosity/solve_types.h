@@ -45,6 +45,7 @@ struct SolveReport {
   double seconds = 0;
   std::string stopped_by;  // "converged", "iterations", "time limit", "interrupted"
   std::vector<double> unshot_history;  // after each shot
+  std::vector<std::uint64_t> transfers_history;  // energy transfers so far, after each shot
   double form_factor_sum_error = 0;    // mean |1 - sum of receiver form factors| before normalisation
   // Empty, or why refinement stopped before the solve did ("max elements", "memory
   // budget") and at which shot.

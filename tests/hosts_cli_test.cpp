@@ -15,11 +15,11 @@ namespace {
 
 using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
-// The numbers of the polyline `id="unshot"`, as (x, y) pairs.
-std::vector<std::pair<double, double>> polyline_points(const std::string& svg) {
+// The numbers of the polyline with this id, as (x, y) pairs.
+std::vector<std::pair<double, double>> polyline_points(const std::string& svg, const std::string& id = "unshot") {
   std::smatch m;
   std::vector<std::pair<double, double>> points;
-  if (!std::regex_search(svg, m, std::regex("<polyline id=\"unshot\"[^>]* points=\"([^\"]*)\""))) return points;
+  if (!std::regex_search(svg, m, std::regex("<polyline id=\"" + id + "\"[^>]* points=\"([^\"]*)\""))) return points;
   std::istringstream in(m[1].str());
   for (std::string pair; in >> pair;) {
     const auto comma = pair.find(',');
@@ -46,6 +46,13 @@ TEST(PlotCommand, OnePointPerShotFallingWithUnshotPower) {
     EXPECT_GE(points[k].second, points[k - 1].second - 1e-9) << k;
   }
   EXPECT_GT(points.back().second, points.front().second);
+  // Transfers so far: one point per shot, never falling (y never grows), ending at the
+  // top of the axis (the total).
+  const auto transfers_curve = polyline_points(svg, "transfers");
+  ASSERT_EQ(transfers_curve.size(), 37u);
+  for (std::size_t k = 1; k < transfers_curve.size(); ++k)
+    EXPECT_LE(transfers_curve[k].second, transfers_curve[k - 1].second + 1e-9) << k;
+  EXPECT_NEAR(transfers_curve.back().second, 50.0, 1e-6);  // the plot's top edge
   const auto report = nlohmann::json::parse(test::read_text(dir.path("report.json")));
   const std::string transfers = std::to_string(report["energy_transfers"].get<std::uint64_t>());
   EXPECT_NE(svg.find("37 shots, " + transfers + " energy transfers"), std::string::npos) << svg.substr(0, 2000);

@@ -1,8 +1,9 @@
 // `dynrad plot REPORT.json -o plot.svg`: the convergence of a solve, from the report
 // `dynrad solve --report` writes: the unshot fraction after each shot on a log scale
-// against the shot number, one polyline point per shot, with the method, shots,
-// energy transfers and stop reason as the caption. The report holds only the total of
-// energy transfers, not one per shot, so the caption gives that total.
+// (left axis) and the energy transfers so far (right axis, linear) against the shot
+// number, one polyline point per shot, with the method, shots, energy transfers and
+// stop reason as the caption. Reports without `transfers_history` (older ones) get
+// the unshot curve alone.
 //
 // The SVG is written by hand (a few elements) and atomically.
 #include "mesh/atomic_file.h"
@@ -31,6 +32,7 @@ struct Convergence {
   std::vector<double> unshot;  // after each shot
   std::string method = "?", stopped_by = "?";
   double transfers = -1;
+  std::vector<double> transfers_history;  // after each shot; empty when the report has none
   double target = -1;  // the --converge fraction, when the report has it
 };
 
@@ -68,6 +70,14 @@ Convergence read_report(const std::string& path) {
   if (j.contains("stopped_by") && j["stopped_by"].is_string()) c.stopped_by = j["stopped_by"].get<std::string>();
   if (j.contains("energy_transfers") && j["energy_transfers"].is_number())
     c.transfers = j["energy_transfers"].get<double>();
+  if (j.contains("transfers_history") && j["transfers_history"].is_array() &&
+      j["transfers_history"].size() == c.unshot.size()) {
+    for (const auto& v : j["transfers_history"]) {
+      if (!v.is_number() || v.get<double>() < 0)
+        throw InputError(path, 0, "has a transfers_history entry that is not a number >= 0; the report is damaged.");
+      c.transfers_history.push_back(v.get<double>());
+    }
+  }
   if (j.contains("options") && j["options"].is_object() && j["options"].contains("converge") &&
       j["options"]["converge"].is_number())
     c.target = j["options"]["converge"].get<double>();
@@ -100,7 +110,8 @@ std::string escape_xml(const std::string& s) {
 // The unshot fraction on log10 from the decade below the smallest value to 1 (it
 // starts at or below 1); shots linear from 0 to the last.
 std::string render_svg(const Convergence& c, int width, int height, const std::string& title) {
-  const double left = 80, right = width - 30.0, top = 50, bottom = height - 60.0;
+  const double left = 80, right = width - (c.transfers_history.empty() ? 30.0 : 90.0), top = 50,
+               bottom = height - 60.0;
   // The range holds the curve and the converge target.
   double smallest = *std::min_element(c.unshot.begin(), c.unshot.end());
   if (c.target > 0) smallest = std::min(smallest, c.target);
@@ -157,6 +168,23 @@ std::string render_svg(const Convergence& c, int width, int height, const std::s
   for (std::size_t k = 0; k < c.unshot.size(); ++k)
     svg += fmt::format("{}{:.2f},{:.2f}", k ? " " : "", x_of(static_cast<double>(k + 1)), y_of(c.unshot[k]));
   svg += "\"/>\n";
+  if (!c.transfers_history.empty()) {
+    // Energy transfers so far, linear from 0 to the total, on the right axis.
+    const double most = std::max(1.0, c.transfers_history.back());
+    auto y_transfers = [&](double t) { return bottom - (bottom - top) * t / most; };
+    for (int tick = 0; tick <= 4; ++tick)
+      svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#bf5f1f\">{:.3g}</text>\n", right + 6,
+                         y_transfers(most * tick / 4) + 4, most * tick / 4);
+    svg += fmt::format(
+        "<text x=\"{0:.1f}\" y=\"{1:.1f}\" text-anchor=\"middle\" fill=\"#bf5f1f\" "
+        "transform=\"rotate(90 {0:.1f} {1:.1f})\">energy transfers so far</text>\n",
+        static_cast<double>(width) - 14, (top + bottom) / 2);
+    svg += "<polyline id=\"transfers\" fill=\"none\" stroke=\"#bf5f1f\" stroke-width=\"1.5\" points=\"";
+    for (std::size_t k = 0; k < c.transfers_history.size(); ++k)
+      svg += fmt::format("{}{:.2f},{:.2f}", k ? " " : "", x_of(static_cast<double>(k + 1)),
+                         y_transfers(c.transfers_history[k]));
+    svg += "\"/>\n";
+  }
   const std::string caption = fmt::format(
       "{}: {} shots, {} energy transfers, final unshot {:.3g}% ({})", c.method, c.unshot.size(),
       c.transfers >= 0 ? fmt::format("{:.0f}", c.transfers) : std::string("?"), 100 * c.unshot.back(), c.stopped_by);
@@ -181,7 +209,8 @@ int run_plot(const PlotOptions& options) {
 
 Command add_plot_command(CLI::App& app) {
   auto options = std::make_shared<PlotOptions>();
-  CLI::App* command = app.add_subcommand("plot", "Plot a solve's convergence (unshot fraction per shot) as SVG");
+  CLI::App* command =
+      app.add_subcommand("plot", "Plot a solve's convergence (unshot fraction and transfers per shot) as SVG");
   command->add_option("report", options->report, "JSON report written by dynrad solve --report")->required();
   command->add_option("-o,--output", options->output, "SVG file to write")->required();
   command->add_option("--width", options->width, "Width in pixels")

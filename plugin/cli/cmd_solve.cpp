@@ -194,6 +194,7 @@ int run_solve(SolveCliOptions& options) {
     j["seconds"] = report.seconds;
     j["stopped_by"] = report.stopped_by;
     j["unshot_history"] = report.unshot_history;
+    j["transfers_history"] = report.transfers_history;
     j["form_factor_sum_error"] = report.form_factor_sum_error;
     j["refinement_stopped"] = report.refinement_stopped;
     j["refinement_stopped_at"] = report.refinement_stopped_at;
