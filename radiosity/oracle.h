@@ -49,12 +49,12 @@ struct OracleThresholds {
   // negligible share of the element's light does not refine for its own sake.
   // Defaults from the sweep in bench/README.md.
   double pushdown_cumulated_gradient = 0.05;
-  double pushdown = 0.05;
+  double pushdown = 0.04;
   double pushdown_floor = 0.02;
   // Measure the floor against the element's expected final brightness, B plus its
   // share of the light not yet shot (Cohen et al. 1988's ambient term), instead of
   // B so far: early in a solve B is small and every sender looks important.
-  bool pushdown_ambient = false;
+  bool pushdown_ambient = true;
 };
 
 struct OracleInputs {

@@ -20,7 +20,8 @@
 //   progressive never goes on;
 //   adaptive always goes on while q has children (every shot reaches all leaves), and
 //     subdivides a leaf when Figure 3's oracle holds;
-//   dynamic goes on only when Figure 6's oracle holds; where it stops, dB is pushed
+//   dynamic goes on only when its oracle holds (Figure 6's, or the push-down oracle
+//     that is the default, see oracle.h); where it stops, dB is pushed
 //     down to the elements already below q, linearly interpolated from q's corners
 //     (the paper's "energy transport derivation"), so no rays are spent on them.
 // Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a

@@ -412,6 +412,10 @@ dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const
   if (s != DYNRAD_OK) return s;
   rad::OracleThresholds& t = options->refine.dynamic;
   const std::string n = name;
+  if (n == "pushdown_ambient") {
+    t.pushdown_ambient = value != 0;
+    return DYNRAD_OK;
+  }
   double* target = n == "cumulated_gradient" ? (t.variant == rad::OracleThresholds::Variant::paper
                                                     ? &t.cumulated_gradient
                                                     : &t.pushdown_cumulated_gradient)
@@ -422,7 +426,7 @@ dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const
                                              : nullptr;
   s = set_option(options, target != nullptr,
                  "dynrad_options_set_oracle_threshold: unknown name; available: cumulated_gradient, current_gradient, "
-                 "current_ratio, pushdown_error, pushdown_floor.");
+                 "current_ratio, pushdown_error, pushdown_floor, pushdown_ambient.");
   if (s == DYNRAD_OK) *target = value;
   return s;
 }

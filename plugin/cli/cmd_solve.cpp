@@ -43,6 +43,7 @@ struct SolveCliOptions {
   std::string oracle = "pushdown";
   std::size_t max_elements = 0;
   double memory_budget_mb = 0;
+  bool no_pushdown_ambient = false;
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
@@ -112,6 +113,7 @@ int run_solve(SolveCliOptions& options) {
   if (options.current_ratio >= 0) oracle.current_ratio = options.current_ratio;
   if (options.pushdown >= 0) oracle.pushdown = options.pushdown;
   if (options.pushdown_floor >= 0) oracle.pushdown_floor = options.pushdown_floor;
+  if (options.no_pushdown_ambient) oracle.pushdown_ambient = false;
   refine.max_elements = options.max_elements;
   refine.memory_budget = static_cast<std::size_t>(options.memory_budget_mb * 1024 * 1024);
   check_output_writable(options.output);
@@ -264,6 +266,8 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--pushdown-floor", options->pushdown_floor,
                       "Push-down oracle: errors are measured against at least this fraction of the element's B")
       ->check(CLI::NonNegativeNumber);
+  command->add_flag("--no-pushdown-ambient", options->no_pushdown_ambient,
+                    "Push-down oracle: floor against B so far, not B plus the ambient share of unshot light");
   command->add_option("--max-elements", options->max_elements,
                       "Stop refining (and go on solving) once the element tree holds this many (0: no limit)");
   command->add_option("--memory-budget", options->memory_budget_mb,

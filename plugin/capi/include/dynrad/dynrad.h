@@ -125,7 +125,7 @@ DYNRAD_API dynrad_status dynrad_options_set_threshold(dynrad_options* options, d
 DYNRAD_API dynrad_status dynrad_options_set_oracle(dynrad_options* options, const char* oracle);
 /* One of dynamic's thresholds (>= 0), by the command line's option name without
  * dashes: "cumulated_gradient" (of the oracle chosen so far), "current_gradient",
- * "current_ratio", "pushdown_error", "pushdown_floor". */
+ * "current_ratio", "pushdown_error", "pushdown_floor", "pushdown_ambient" (0 off, else on). */
 DYNRAD_API dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value);
 /* Stop refining once the element tree holds this many elements; 0 (default): no limit. */
 DYNRAD_API dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements);
