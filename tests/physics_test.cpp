@@ -56,6 +56,8 @@ struct Config {
   std::string name;
 };
 
+void PrintTo(const Config& config, std::ostream* os) { *os << config.name; }
+
 OracleThresholds paper_oracle() {
   OracleThresholds t;
   t.variant = OracleThresholds::Variant::paper;
