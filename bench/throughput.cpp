@@ -10,7 +10,7 @@
 // The last line is `ratio: achieved / reference`.
 //
 // Usage: bench_throughput [model] [patch size] [method]
-//   (default: samples/globillum_room_obstructed.obj, 0.25, dynamic; to 1% unshot)
+//   (default: samples/globillum_room_obstructed.obj, 0.5, dynamic; to 1% unshot)
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/solver.h"
@@ -51,8 +51,9 @@ Setup prepare(const std::string& path, double patch_size) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures as they come
   const std::string path = argc > 1 ? argv[1] : std::string(DYNRAD_SAMPLES_DIR) + "/globillum_room_obstructed.obj";
-  const double patch_size = argc > 2 ? std::atof(argv[2]) : 0.25;
+  const double patch_size = argc > 2 ? std::atof(argv[2]) : 0.5;
   rad::RefineSettings refine;
   refine.method = rad::parse_method(argc > 3 ? argv[3] : "dynamic");
 
