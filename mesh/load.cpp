@@ -3,7 +3,33 @@
 #include "mesh/error.h"
 #include "mesh/import.h"
 
+#include <unordered_set>
+
 namespace dynrad {
+namespace {
+
+// Emitting polygons that cleanup dropped entirely (zero area, fewer than three distinct
+// corners, or an exact duplicate of another face): they emit nothing, and the user
+// should know, since a lamp modelled as a line or a point is a common mistake. Returns
+// a warning, or "" when there is none.
+std::string dropped_emitters(const PolygonSoup& soup, const TriangleSoup& clean) {
+  auto key = [](const SourceRef& ref) { return (static_cast<std::uint64_t>(ref.file) << 32) | ref.face; };
+  std::unordered_set<std::uint64_t> kept;
+  for (const SourceRef& ref : clean.origin) kept.insert(key(ref));
+  std::size_t dropped = 0;
+  std::size_t first = 0;
+  for (std::size_t p = 0; p < soup.polygons.size(); ++p) {
+    if (!soup.materials[soup.material[p]].emits() || kept.count(key(soup.origin[p]))) continue;
+    if (dropped++ == 0) first = p;
+  }
+  if (dropped == 0) return "";
+  return std::to_string(dropped) + " emitting face" + (dropped == 1 ? " was" : "s were") +
+         " dropped by cleanup (no area, or a duplicate of another face) and emit nothing (first: " +
+         soup.where(first) + ", material '" + soup.materials[soup.material[first]].name +
+         "'). Model a light as a polygon with an area.";
+}
+
+}  // namespace
 
 LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
   const PolygonSoup soup = read_input(path);
@@ -22,6 +48,7 @@ LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
     scene.warnings.push_back(std::to_string(scene.cleanup.untriangulatable_polygons) +
                              " self-intersecting polygons could not be triangulated and were dropped (first: " +
                              scene.cleanup.first_problem + ").");
+  if (const std::string warning = dropped_emitters(soup, clean); !warning.empty()) scene.warnings.push_back(warning);
   scene.mesh = std::make_unique<SceneMesh>(clean);
   return scene;
 }

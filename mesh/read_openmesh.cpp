@@ -9,8 +9,11 @@
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string_view>
 
@@ -256,6 +259,152 @@ void check_ascii_vertices(const std::string& path, const std::string& text, cons
   }
 }
 
+// OpenMesh turns PLY float colours into bytes without clamping (1.5 becomes 126/255,
+// -0.5 becomes 129/255), so a float face colour outside [0, 1] would silently become
+// some other colour. This walks the PLY body itself (ASCII or binary) and refuses such
+// colours, naming the face. Files whose faces have no float colours return at once; a
+// truncated body ends the walk quietly (the reader reports truncation afterwards).
+void check_ply_float_colours(const std::string& path, const std::string& text) {
+  struct Property {
+    std::string name;
+    int size = 0;          // bytes of a scalar, or of each list item
+    int count_size = 0;    // bytes of a list's count; 0 for scalars
+    bool floating = false;
+  };
+  struct Element {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<Property> properties;
+  };
+  auto type_size = [](const std::string& t) -> int {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+  };
+  auto is_colour = [](const std::string& name) {
+    return name == "red" || name == "green" || name == "blue" || name == "diffuse_red" || name == "diffuse_green" ||
+           name == "diffuse_blue";
+  };
+  std::vector<Element> elements;
+  std::string format;
+  std::size_t body = std::string::npos, header_lines = 0;
+  {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      ++header_lines;
+      std::istringstream words(line);
+      std::string key;
+      words >> key;
+      if (key == "end_header") {
+        body = static_cast<std::size_t>(in.tellg());
+        break;
+      }
+      if (key == "format") words >> format;
+      if (key == "element") {
+        Element e;
+        words >> e.name >> e.count;
+        elements.push_back(e);
+      }
+      if (key == "property" && !elements.empty()) {
+        std::string type, a, b;
+        words >> type >> a;
+        Property p;
+        if (type == "list") {
+          words >> b >> p.name;
+          p.count_size = type_size(a);
+          p.size = type_size(b);
+          if (p.count_size == 0 || p.size == 0) return;  // the reader refuses unknown types
+        } else {
+          p.name = a;
+          p.size = type_size(type);
+          p.floating = type.rfind("float", 0) == 0 || type == "double";
+          if (p.size == 0) return;
+        }
+        elements.back().properties.push_back(p);
+      }
+    }
+  }
+  if (body == std::string::npos || body > text.size()) return;
+  bool any = false;
+  for (const Element& e : elements)
+    for (const Property& p : e.properties) any |= e.name == "face" && p.floating && p.count_size == 0 && is_colour(p.name);
+  if (!any) return;
+
+  auto refuse = [&](std::uint64_t face, std::size_t line, const std::string& name, double value) {
+    std::ostringstream v;
+    v << value;
+    throw InputError(path, line,
+                     "face " + std::to_string(face) + " has colour " + name + " = " + v.str() +
+                         ", outside [0, 1]. Float colours are display colours from 0 to 1; fix the file, or give "
+                         "the faces a material in a scene file.");
+  };
+  if (format == "ascii") {
+    std::istringstream in(text.substr(body));
+    std::size_t line_no = header_lines;
+    for (const Element& e : elements) {
+      for (std::uint64_t r = 0; r < e.count; ++r) {
+        std::string line;
+        do {
+          if (!std::getline(in, line)) return;
+          ++line_no;
+        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        if (e.name != "face") continue;
+        std::istringstream tokens(line);
+        for (const Property& p : e.properties) {
+          if (p.count_size > 0) {
+            std::int64_t n = 0;
+            if (!(tokens >> n) || n < 0) return;
+            for (std::string skip; n > 0 && tokens >> skip;) --n;
+            continue;
+          }
+          std::string token;
+          if (!(tokens >> token)) return;
+          const double value = std::strtod(token.c_str(), nullptr);  // strtod reads "nan" and "inf" too
+          if (p.floating && is_colour(p.name) && !(value >= 0 && value <= 1)) refuse(r, line_no, p.name, value);
+        }
+      }
+    }
+    return;
+  }
+  const bool big_endian = format == "binary_big_endian";
+  std::size_t at = body;
+  auto read_bytes = [&](int size, unsigned char* out) {
+    if (at + size > text.size()) return false;
+    for (int i = 0; i < size; ++i) out[i] = static_cast<unsigned char>(text[at + (big_endian ? size - 1 - i : i)]);
+    at += size;
+    return true;
+  };
+  for (const Element& e : elements) {
+    if (e.properties.empty()) continue;
+    for (std::uint64_t r = 0; r < e.count; ++r) {
+      for (const Property& p : e.properties) {
+        unsigned char bytes[8] = {};
+        if (p.count_size > 0) {
+          if (!read_bytes(p.count_size, bytes)) return;
+          std::uint64_t n = 0;
+          for (int i = p.count_size - 1; i >= 0; --i) n = (n << 8) | bytes[i];
+          if (n > (text.size() - at) / p.size) return;
+          at += n * p.size;
+          continue;
+        }
+        if (!read_bytes(p.size, bytes)) return;
+        if (e.name != "face" || !p.floating || !is_colour(p.name)) continue;
+        double value = 0;  // the bytes are little-endian now, as on every machine we build for
+        if (p.size == 4) {
+          float f = 0;
+          std::memcpy(&f, bytes, 4);
+          value = f;
+        } else {
+          std::memcpy(&value, bytes, 8);
+        }
+        if (!(value >= 0 && value <= 1)) refuse(r, 0, p.name, value);
+      }
+    }
+  }
+}
+
 bool is_ascii(const std::string& text, const std::string& ext) {
   if (ext == ".off") return text.rfind("OFF BINARY", 0) != 0 && text.find("BINARY") > 16;
   if (ext == ".ply") return text.find("format ascii") != std::string::npos;
@@ -277,6 +426,7 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
                          ". Is it mislabelled or damaged? Rename it to its real extension or re-export it.");
 
   check_declared_counts(path, text, ext);
+  if (ext == ".ply") check_ply_float_colours(path, text);
   // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
   // (keeping line numbers) and parse from memory.
   const std::string parsed = ext == ".off" ? strip_comments(text) : text;
@@ -336,26 +486,32 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   Material fallback;
   fallback.name = "default";
   fallback.origin = "built-in default (grey, reflectance 0.5)";
-  // One material per distinct face colour, named after the colour.
-  std::vector<std::pair<Rgb, std::uint32_t>> colour_materials;
+  // One material per distinct face colour, named after the colour. A PLY can have a
+  // million distinct colours, so they are found through a map.
+  std::map<std::array<double, 3>, std::uint32_t> colour_materials;
   std::size_t clamped = 0;
+  int default_index = -1;
   auto material_for = [&](std::size_t f) -> std::uint32_t {
     if (!importer.has_color[f]) {
-      int m = soup.find_material("default");
-      if (m < 0) {
+      if (default_index < 0) {
+        default_index = static_cast<int>(soup.materials.size());
         soup.materials.push_back(fallback);
-        m = static_cast<int>(soup.materials.size() - 1);
       }
-      return static_cast<std::uint32_t>(m);
+      return static_cast<std::uint32_t>(default_index);
     }
     // Face colours are display colours, not measured albedo: white would mean a
     // perfect reflector, so each channel is clamped to kMaxColourReflectance.
     const Rgb raw = importer.face_color[f];
+    if (!raw.is_finite())
+      throw InputError(path, data_line(soup.points.size() + f),
+                       "face " + std::to_string(f) + " has a colour that is not a finite number. Fix it in the "
+                       "modelling tool.");
     const Rgb c(std::min(raw.r, kMaxColourReflectance), std::min(raw.g, kMaxColourReflectance),
                 std::min(raw.b, kMaxColourReflectance));
     if (c != raw) ++clamped;
-    for (const auto& [colour, index] : colour_materials)
-      if (colour == c) return index;
+    const auto [known, added] =
+        colour_materials.emplace(std::array<double, 3>{c.r, c.g, c.b}, static_cast<std::uint32_t>(soup.materials.size()));
+    if (!added) return known->second;
     Material m;
     std::ostringstream name;
     name.precision(3);
@@ -364,8 +520,7 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
     m.reflectance = c;
     m.origin = path + " face " + std::to_string(f) + " (face colour)";
     soup.materials.push_back(m);
-    colour_materials.emplace_back(c, static_cast<std::uint32_t>(soup.materials.size() - 1));
-    return colour_materials.back().second;
+    return known->second;
   };
   for (std::size_t f = 0; f < importer.polygons.size(); ++f) {
     if (importer.polygons[f].size() < 3) continue;  // cleanup counts what it removes; this never held a face

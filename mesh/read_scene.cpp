@@ -225,6 +225,8 @@ class SceneParser {
     m.origin = path_ + " (" + where + ")";
     if (def.contains("reflectance")) m.reflectance = rgb(def["reflectance"], where + ".reflectance");
     if (def.contains("emission")) m.emission = rgb(def["emission"], where + ".emission");
+    // Checked here even when no face uses it: a definition that is wrong is wrong.
+    if (def.contains("reflectance") || def.contains("emission")) check_material(m, path_);
     const int existing = scene.find_material(name);
     if (existing < 0) {
       scene.warnings.push_back(path_ + ": material \"" + name + "\" is defined but no face uses it.");
