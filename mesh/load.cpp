@@ -24,9 +24,8 @@ std::string dropped_emitters(const PolygonSoup& soup, const TriangleSoup& clean)
   }
   if (dropped == 0) return "";
   return std::to_string(dropped) + " emitting face" + (dropped == 1 ? " was" : "s were") +
-         " dropped by cleanup (no area, or a duplicate of another face) and emit nothing (first: " +
-         soup.where(first) + ", material '" + soup.materials[soup.material[first]].name +
-         "'). Model a light as a polygon with an area.";
+         " dropped by cleanup (no area, or a duplicate of another face) and emit nothing (first: " + soup.where(first) +
+         ", material '" + soup.materials[soup.material[first]].name + "'). Model a light as a polygon with an area.";
 }
 
 }  // namespace

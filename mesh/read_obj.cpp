@@ -9,9 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -24,10 +24,10 @@ PolygonSoup read_obj(const std::string& path);
 namespace {
 
 struct ObjLines {
-  std::vector<std::uint32_t> face_lines;        // line of each `f`, in file order
-  std::vector<std::uint32_t> face_usemtl;       // index into usemtl_names, or UINT32_MAX
-  std::vector<std::string> usemtl_names;        // in order of first use
-  std::vector<std::uint32_t> usemtl_lines;      // line of first use
+  std::vector<std::uint32_t> face_lines;    // line of each `f`, in file order
+  std::vector<std::uint32_t> face_usemtl;   // index into usemtl_names, or UINT32_MAX
+  std::vector<std::string> usemtl_names;    // in order of first use
+  std::vector<std::uint32_t> usemtl_lines;  // line of first use
 };
 
 std::vector<std::string> split_ws(const std::string& s) {
@@ -67,17 +67,17 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
     const auto at = static_cast<std::uint32_t>(line_no);
     if (key == "v") {
       if (tokens.size() < 4)
-        throw InputError(path, line_no,
-                         "vertex has " + std::to_string(tokens.size() - 1) +
-                             " coordinates, 3 are needed (is the file truncated?).");
+        throw InputError(
+            path, line_no,
+            "vertex has " + std::to_string(tokens.size() - 1) + " coordinates, 3 are needed (is the file truncated?).");
       for (int i = 1; i <= 3; ++i) {
         double value = 0;
         if (!parse_double(tokens[i], value))
           throw InputError(path, line_no, "vertex coordinate '" + tokens[i] + "' is not a number.");
         if (!std::isfinite(value))
-          throw InputError(path, line_no,
-                           "vertex coordinate '" + tokens[i] +
-                               "' is not finite. Fix or remove this vertex in the modelling tool.");
+          throw InputError(
+              path, line_no,
+              "vertex coordinate '" + tokens[i] + "' is not finite. Fix or remove this vertex in the modelling tool.");
       }
       ++vertex_count;
     } else if (key == "f") {
@@ -108,8 +108,7 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
                                "). Put the .mtl file next to the .obj or remove the mtllib line.");
       }
     } else if (key == "usemtl" && tokens.size() >= 2) {
-      const auto [it, added] =
-          usemtl_index.emplace(tokens[1], static_cast<std::uint32_t>(result.usemtl_names.size()));
+      const auto [it, added] = usemtl_index.emplace(tokens[1], static_cast<std::uint32_t>(result.usemtl_names.size()));
       current_material = it->second;
       if (added) {
         result.usemtl_names.push_back(tokens[1]);
@@ -156,8 +155,7 @@ PolygonSoup detail::read_obj(const std::string& path) {
   config.triangulate = false;  // CGAL triangulates, concave polygons included
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config))
-    throw InputError(path, 0, "OBJ parse failed: " + reader.Error());
+  if (!reader.ParseFromFile(path, config)) throw InputError(path, 0, "OBJ parse failed: " + reader.Error());
 
   PolygonSoup soup;
   soup.files.push_back(path);

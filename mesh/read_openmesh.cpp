@@ -193,48 +193,169 @@ std::string strip_comments(const std::string& text) {
   return out;
 }
 
+// A PLY header, parsed and checked before OpenMesh sees it: OpenMesh's reader writes
+// through a property line that no element line precedes (a crash), and reads counts
+// that do not fit its 32-bit integers as whatever they wrap to.
+struct PlyProperty {
+  std::string name;
+  int size = 0;        // bytes of a scalar, or of each list item
+  int count_size = 0;  // bytes of a list's count; 0 for scalars
+  bool floating = false;
+};
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::string format;  // ascii, binary_little_endian, binary_big_endian
+  std::vector<PlyElement> elements;
+  std::size_t body = 0;   // offset of the first byte after end_header's line
+  std::size_t lines = 0;  // lines up to and including end_header
+};
+
+int ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+// A count: digits only (OpenMesh reads "-2" as 4294967294), at most 18 of them so that
+// sums of counts cannot overflow. Whether the file can hold them is checked later.
+bool parse_count(const std::string& token, std::uint64_t& count) {
+  if (token.empty() || token.size() > 18 || token.find_first_not_of("0123456789") != std::string::npos) return false;
+  count = std::stoull(token);
+  return true;
+}
+
+PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
+  PlyHeader header;
+  std::istringstream in(text);
+  bool ended = false;
+  for (std::string line; std::getline(in, line);) {
+    ++header.lines;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    auto bad = [&](const std::string& what) {
+      throw InputError(path, header.lines, "PLY header: " + what + " The file is damaged or not really PLY.");
+    };
+    if (header.lines == 1) {
+      if (key != "ply") bad("the first line must be 'ply'.");
+    } else if (key == "end_header") {
+      header.body = in.tellg() < 0 ? text.size() : static_cast<std::size_t>(in.tellg());
+      ended = true;
+      break;
+    } else if (key == "format") {
+      std::string version;
+      words >> header.format >> version;
+      if (header.format != "ascii" && header.format != "binary_little_endian" && header.format != "binary_big_endian")
+        bad("unknown format '" + header.format + "' (ascii, binary_little_endian or binary_big_endian).");
+    } else if (key == "element") {
+      PlyElement e;
+      std::string count;
+      words >> e.name >> count;
+      if (e.name.empty() || !parse_count(count, e.count))
+        bad("'" + line + "' must be 'element NAME COUNT' with a whole number as the count.");
+      header.elements.push_back(e);
+    } else if (key == "property") {
+      if (header.elements.empty()) bad("a property comes before any element.");
+      std::string type, a, b;
+      words >> type >> a;
+      PlyProperty p;
+      if (type == "list") {
+        words >> b >> p.name;
+        p.count_size = ply_type_size(a);
+        p.size = ply_type_size(b);
+        if (p.count_size == 0 || p.size == 0 || p.name.empty()) bad("'" + line + "' is not a valid list property.");
+      } else {
+        p.name = a;
+        p.size = ply_type_size(type);
+        p.floating = type.rfind("float", 0) == 0 || type == "double";
+        if (p.size == 0 || p.name.empty()) bad("'" + line + "' has an unknown type or no name.");
+      }
+      header.elements.back().properties.push_back(p);
+    } else if (key != "comment" && key != "obj_info" && !key.empty()) {
+      bad("unknown keyword '" + key + "'.");
+    }
+  }
+  if (!ended) throw InputError(path, 0, "PLY header has no end_header line: the file is truncated or damaged.");
+  if (header.format.empty()) throw InputError(path, 0, "PLY header has no format line.");
+  return header;
+}
+
 // A damaged header can declare billions of elements; readers would then allocate or
 // loop until the machine gives up. Refuse counts the file's size cannot hold.
 void check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
   std::uint64_t vertices = 0, faces = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> records;  // (count, least bytes per record)
+  std::string others;    // PLY elements other than vertex and face, for the message
   std::size_t body = 0;  // offset where element data starts
   if (ext == ".ply") {
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-      std::istringstream words(line);
-      std::string key, name;
-      std::uint64_t count = 0;
-      words >> key;
-      if (key == "end_header") {
-        body = static_cast<std::size_t>(in.tellg());
-        break;
-      }
-      if (key == "element" && (words >> name >> count)) {
-        if (name == "vertex") vertices = count;
-        if (name == "face") faces = count;
-      }
+    const PlyHeader header = parse_ply_header(path, text);
+    for (const PlyElement& e : header.elements) {
+      if (e.name == "vertex") vertices = e.count;
+      if (e.name == "face") faces = e.count;
+      if (e.name != "vertex" && e.name != "face" && e.count > 0)
+        others += ", " + std::to_string(e.count) + " " + e.name + " elements";
+      // Every property value takes a byte at least (a digit and a separator in ASCII).
+      records.emplace_back(e.count, std::max<std::uint64_t>(1, e.properties.size()));
     }
+    body = header.body;
   } else if (ext == ".off") {
-    if (text.find("BINARY") < 16) return;  // binary OFF: counts are binary, OpenMesh checks them
-    std::istringstream in(strip_comments(text));
-    std::string magic;
-    in >> magic;
-    if (!(in >> vertices >> faces)) throw InputError(path, 0, "has no valid vertex and face counts after the OFF line.");
-    body = static_cast<std::size_t>(in.tellg());
+    if (text.find("BINARY") < 16) {
+      // Binary OFF as OpenMesh reads and writes it: after the first line, three 32-bit
+      // little-endian counts (vertices, faces, edges); a vertex is at least 3 floats, a
+      // face at least a count and 3 indices. OpenMesh loops over whatever they say.
+      body = text.find('\n');
+      std::int32_t counts[3] = {0, 0, 0};
+      if (body == std::string::npos || text.size() < body + 1 + sizeof counts)
+        throw InputError(path, 0, "binary OFF without vertex and face counts: the file is truncated.");
+      std::memcpy(counts, text.data() + body + 1, sizeof counts);
+      if (counts[0] < 0 || counts[1] < 0)
+        throw InputError(path, 0,
+                         "binary OFF declares " + std::to_string(counts[0]) + " vertices and " +
+                             std::to_string(counts[1]) +
+                             " faces: the header is damaged (or big-endian, which "
+                             "dynrad does not read; convert the file to PLY).");
+      vertices = static_cast<std::uint64_t>(counts[0]);
+      faces = static_cast<std::uint64_t>(counts[1]);
+      body += 1 + sizeof counts;
+      records = {{vertices, 12}, {faces, 16}};
+    } else {
+      std::istringstream in(strip_comments(text));
+      std::string magic, v, f;
+      in >> magic >> v >> f;
+      if (!parse_count(v, vertices) || !parse_count(f, faces))
+        throw InputError(
+            path, 0,
+            "the vertex and face counts after the OFF line must be whole numbers (found '" + v + "' and '" + f + "').");
+      body = in.tellg() < 0 ? text.size() : static_cast<std::size_t>(in.tellg());
+      records = {{vertices, 3}, {faces, 4}};  // "x y z", and "3 a b c" at the least
+    }
   } else {
     return;  // STL: the count is implied by the size (binary) or absent (ASCII)
   }
   const std::uint64_t room = text.size() > body ? text.size() - body : 0;
-  if (vertices * 3 + faces * 4 > room)
+  std::uint64_t needed = 0;
+  bool fits = true;
+  for (const auto& [count, bytes] : records) {
+    fits = fits && count <= (room - needed) / bytes;
+    if (fits) needed += count * bytes;
+  }
+  if (!fits)
     throw InputError(path, 0,
                      "the header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                         " faces, more than the " + std::to_string(room) +
+                         " faces" + others + ", more than the " + std::to_string(room) +
                          " bytes after it can hold: the file is truncated or its header is damaged.");
 }
 
 // Each of the first `count` data lines must hold finite numbers only.
-void check_ascii_vertices(const std::string& path, const std::string& text, const std::vector<std::uint32_t>& data_lines,
-                          std::size_t count) {
+void check_ascii_vertices(const std::string& path, const std::string& text,
+                          const std::vector<std::uint32_t>& data_lines, std::size_t count) {
   std::vector<std::string_view> lines;
   std::size_t start = 0;
   while (start <= text.size()) {
@@ -265,71 +386,19 @@ void check_ascii_vertices(const std::string& path, const std::string& text, cons
 // colours, naming the face. Files whose faces have no float colours return at once; a
 // truncated body ends the walk quietly (the reader reports truncation afterwards).
 void check_ply_float_colours(const std::string& path, const std::string& text) {
-  struct Property {
-    std::string name;
-    int size = 0;          // bytes of a scalar, or of each list item
-    int count_size = 0;    // bytes of a list's count; 0 for scalars
-    bool floating = false;
-  };
-  struct Element {
-    std::string name;
-    std::uint64_t count = 0;
-    std::vector<Property> properties;
-  };
-  auto type_size = [](const std::string& t) -> int {
-    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
-    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
-    if (t == "double" || t == "float64") return 8;
-    return 0;
-  };
   auto is_colour = [](const std::string& name) {
     return name == "red" || name == "green" || name == "blue" || name == "diffuse_red" || name == "diffuse_green" ||
            name == "diffuse_blue";
   };
-  std::vector<Element> elements;
-  std::string format;
-  std::size_t body = std::string::npos, header_lines = 0;
-  {
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-      ++header_lines;
-      std::istringstream words(line);
-      std::string key;
-      words >> key;
-      if (key == "end_header") {
-        body = static_cast<std::size_t>(in.tellg());
-        break;
-      }
-      if (key == "format") words >> format;
-      if (key == "element") {
-        Element e;
-        words >> e.name >> e.count;
-        elements.push_back(e);
-      }
-      if (key == "property" && !elements.empty()) {
-        std::string type, a, b;
-        words >> type >> a;
-        Property p;
-        if (type == "list") {
-          words >> b >> p.name;
-          p.count_size = type_size(a);
-          p.size = type_size(b);
-          if (p.count_size == 0 || p.size == 0) return;  // the reader refuses unknown types
-        } else {
-          p.name = a;
-          p.size = type_size(type);
-          p.floating = type.rfind("float", 0) == 0 || type == "double";
-          if (p.size == 0) return;
-        }
-        elements.back().properties.push_back(p);
-      }
-    }
-  }
-  if (body == std::string::npos || body > text.size()) return;
+  const PlyHeader header = parse_ply_header(path, text);
+  const std::vector<PlyElement>& elements = header.elements;
+  const std::string& format = header.format;
+  const std::size_t body = header.body, header_lines = header.lines;
+  if (body > text.size()) return;
   bool any = false;
-  for (const Element& e : elements)
-    for (const Property& p : e.properties) any |= e.name == "face" && p.floating && p.count_size == 0 && is_colour(p.name);
+  for (const PlyElement& e : elements)
+    for (const PlyProperty& p : e.properties)
+      any |= e.name == "face" && p.floating && p.count_size == 0 && is_colour(p.name);
   if (!any) return;
 
   auto refuse = [&](std::uint64_t face, std::size_t line, const std::string& name, double value) {
@@ -343,7 +412,7 @@ void check_ply_float_colours(const std::string& path, const std::string& text) {
   if (format == "ascii") {
     std::istringstream in(text.substr(body));
     std::size_t line_no = header_lines;
-    for (const Element& e : elements) {
+    for (const PlyElement& e : elements) {
       for (std::uint64_t r = 0; r < e.count; ++r) {
         std::string line;
         do {
@@ -352,7 +421,7 @@ void check_ply_float_colours(const std::string& path, const std::string& text) {
         } while (line.find_first_not_of(" \t\r") == std::string::npos);
         if (e.name != "face") continue;
         std::istringstream tokens(line);
-        for (const Property& p : e.properties) {
+        for (const PlyProperty& p : e.properties) {
           if (p.count_size > 0) {
             std::int64_t n = 0;
             if (!(tokens >> n) || n < 0) return;
@@ -376,10 +445,10 @@ void check_ply_float_colours(const std::string& path, const std::string& text) {
     at += size;
     return true;
   };
-  for (const Element& e : elements) {
+  for (const PlyElement& e : elements) {
     if (e.properties.empty()) continue;
     for (std::uint64_t r = 0; r < e.count; ++r) {
-      for (const Property& p : e.properties) {
+      for (const PlyProperty& p : e.properties) {
         unsigned char bytes[8] = {};
         if (p.count_size > 0) {
           if (!read_bytes(p.count_size, bytes)) return;
@@ -437,15 +506,17 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   // OpenMesh prints its own parse complaints; ours below are more specific.
   omerr().disable();
   bool ok = false;
-  if (ext == ".stl") {
-    ok = OpenMesh::IO::IOManager().read(path, importer, options);  // STL needs the file to tell ASCII from binary
+  const bool binary_off = ext == ".off" && !is_ascii(text, ext);
+  if (ext == ".stl" || binary_off) {
+    // STL needs the file to tell ASCII from binary; OpenMesh reads binary OFF from a
+    // stream as if it were text.
+    ok = OpenMesh::IO::IOManager().read(path, importer, options);
   } else {
     std::istringstream stream(parsed);  // the text already in memory: no second read from disk
     ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
   }
   omerr().enable();
-  if (importer.overflow)
-    throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
+  if (importer.overflow) throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
 
   const bool ascii = is_ascii(text, ext) && ext != ".stl";
   const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
@@ -504,13 +575,14 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
     const Rgb raw = importer.face_color[f];
     if (!raw.is_finite())
       throw InputError(path, data_line(soup.points.size() + f),
-                       "face " + std::to_string(f) + " has a colour that is not a finite number. Fix it in the "
-                       "modelling tool.");
+                       "face " + std::to_string(f) +
+                           " has a colour that is not a finite number. Fix it in the "
+                           "modelling tool.");
     const Rgb c(std::min(raw.r, kMaxColourReflectance), std::min(raw.g, kMaxColourReflectance),
                 std::min(raw.b, kMaxColourReflectance));
     if (c != raw) ++clamped;
-    const auto [known, added] =
-        colour_materials.emplace(std::array<double, 3>{c.r, c.g, c.b}, static_cast<std::uint32_t>(soup.materials.size()));
+    const auto [known, added] = colour_materials.emplace(std::array<double, 3>{c.r, c.g, c.b},
+                                                         static_cast<std::uint32_t>(soup.materials.size()));
     if (!added) return known->second;
     Material m;
     std::ostringstream name;

@@ -114,7 +114,8 @@ class SceneParser {
     }
     Matrix m = identity();
     if (t.contains("scale")) {
-      Vec3d s = t["scale"].is_number() ? Vec3d(number(t["scale"], where + ".scale")) : vec3(t["scale"], where + ".scale");
+      Vec3d s =
+          t["scale"].is_number() ? Vec3d(number(t["scale"], where + ".scale")) : vec3(t["scale"], where + ".scale");
       Matrix sm = identity();
       for (int i = 0; i < 3; ++i) sm[i][i] = s[i];
       m = multiply(sm, m);

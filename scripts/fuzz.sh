@@ -52,10 +52,10 @@ seed() {
 mkdir -p build-fuzz/artifacts build-fuzz/tmp
 export TMPDIR=$root/build-fuzz/tmp
 # Embree and TBB are system libraries without instrumentation: their per-thread
-# allocations that live until exit are not ours (tests/fuzz/lsan.supp).
+# allocations that live until exit are not ours (tests/lsan.supp).
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=1:symbolize=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-export LSAN_OPTIONS=suppressions=$root/tests/fuzz/lsan.supp:print_suppressions=0
+export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp:print_suppressions=0
 failed=()
 for target in "${targets[@]}"; do
   seed "$target"

@@ -3,9 +3,9 @@
 // escaped + unshot), and do what the README says it does.
 #include "test_support.h"
 
+#include <gtest/gtest.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -301,7 +301,8 @@ TEST(HostileInput, ScaleAndFarOffsetsGiveTheUnitScaleAnswer) {
 
     const Solution d = run(scale, offset, dynamic);
     EXPECT_NEAR(absorbed_fraction(d), absorbed_fraction(unit_dynamic), 1e-3);
-    EXPECT_NEAR(double(d.radiosity.size()), double(unit_dynamic.radiosity.size()), 0.02 * unit_dynamic.radiosity.size());
+    EXPECT_NEAR(double(d.radiosity.size()), double(unit_dynamic.radiosity.size()),
+                0.02 * unit_dynamic.radiosity.size());
     EXPECT_NEAR(mean_green(d.radiosity), mean_green(unit_dynamic.radiosity), 0.01 * mean_green(unit_dynamic.radiosity));
   }
 }
@@ -354,7 +355,7 @@ TEST(HostileInput, ZeroAreaEmittersAreDroppedWithAWarning) {
   ObjBuilder model;
   model.room();
   const std::string text = model.obj.str();
-  const auto face_line = std::count(text.begin(), text.end(), '\n') + 5;  // after 3 `v` and a `usemtl`
+  const auto face_line = std::count(text.begin(), text.end(), '\n') + 5;    // after 3 `v` and a `usemtl`
   model.face("lamp", {{0.3, 0.3, 0.9}, {0.5, 0.5, 0.9}, {0.7, 0.7, 0.9}});  // a lamp modelled as a line
   const std::string input = model.write(dir);
   const auto r = test::run_dynrad("solve '" + input + "' -o '" + dir.path("out.ply") + "'");
@@ -380,8 +381,9 @@ TEST(HostileInput, ReflectanceOfOneIsRefusedInSceneFilesEvenWhenUnused) {
   model.write(dir);
   for (const char* value : {"1.0", "[0.5, 1.2, 0.5]", "-0.1"}) {
     const std::string scene = dir.write(
-        "s.json", std::string(R"({"meshes": [{"file": "model.obj"}], "materials": {"unused_chrome": {"reflectance": )") +
-                      value + "}}}");
+        "s.json",
+        std::string(R"({"meshes": [{"file": "model.obj"}], "materials": {"unused_chrome": {"reflectance": )") + value +
+            "}}}");
     const auto r = test::run_dynrad("solve '" + scene + "' -o '" + dir.path("out.ply") + "'");
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("'unused_chrome'"), std::string::npos) << r.output;
@@ -396,10 +398,12 @@ TEST(HostileInput, ReflectanceOfOneIsRefusedInSceneFilesEvenWhenUnused) {
 TEST(HostileInput, PlyFloatColoursOutsideZeroToOneAreRefused) {
   TempDir dir;
   auto ply = [&](const std::string& colour) {
-    return dir.write("c.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                              "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
-                              "property float red\nproperty float green\nproperty float blue\nend_header\n"
-                              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.5 0.5\n3 0 2 1 " + colour + "\n");
+    return dir.write("c.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                     "property float red\nproperty float green\nproperty float blue\nend_header\n"
+                     "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.5 0.5\n3 0 2 1 " +
+                         colour + "\n");
   };
   const json white = info(ply("1 1 1"));
   ASSERT_EQ(white["materials"].size(), 2u) << white.dump(2);

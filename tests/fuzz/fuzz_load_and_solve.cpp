@@ -47,8 +47,7 @@ void write_file(const fs::path& path, std::string_view bytes) {
 
 // Small, valid meshes a fuzzed scene file can refer to by name.
 void write_scene_meshes(const fs::path& dir) {
-  write_file(dir / "room.mtl",
-             "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl light\nKd 0.5 0.5 0.5\nKe 10 10 10\n");
+  write_file(dir / "room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl light\nKd 0.5 0.5 0.5\nKe 10 10 10\n");
   write_file(dir / "room.obj",
              "mtllib room.mtl\n"
              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
