@@ -254,6 +254,7 @@ PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
       words >> header.format >> version;
       if (header.format != "ascii" && header.format != "binary_little_endian" && header.format != "binary_big_endian")
         bad("unknown format '" + header.format + "' (ascii, binary_little_endian or binary_big_endian).");
+      if (version != "1.0") bad("unknown version '" + version + "' (1.0).");
     } else if (key == "element") {
       PlyElement e;
       std::string count;
@@ -281,6 +282,11 @@ PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
     } else if (key != "comment" && key != "obj_info" && !key.empty()) {
       bad("unknown keyword '" + key + "'.");
     }
+    // OpenMesh reads the header word by word: a word too many would be read as the
+    // next keyword.
+    std::string extra;
+    if (key != "comment" && key != "obj_info" && words >> extra)
+      bad("unexpected '" + extra + "' at the end of the line.");
   }
   if (!ended) throw InputError(path, 0, "PLY header has no end_header line: the file is truncated or damaged.");
   if (header.format.empty()) throw InputError(path, 0, "PLY header has no format line.");
@@ -289,7 +295,11 @@ PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
 
 // A damaged header can declare billions of elements; readers would then allocate or
 // loop until the machine gives up. Refuse counts the file's size cannot hold.
-void check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
+struct DeclaredCounts {
+  std::uint64_t vertices = 0, faces = 0;
+};
+
+DeclaredCounts check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
   std::uint64_t vertices = 0, faces = 0;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> records;  // (count, least bytes per record)
   std::string others;    // PLY elements other than vertex and face, for the message
@@ -337,7 +347,7 @@ void check_declared_counts(const std::string& path, const std::string& text, con
       records = {{vertices, 3}, {faces, 4}};  // "x y z", and "3 a b c" at the least
     }
   } else {
-    return;  // STL: the count is implied by the size (binary) or absent (ASCII)
+    return {};  // STL: the count is implied by the size (binary) or absent (ASCII)
   }
   const std::uint64_t room = text.size() > body ? text.size() - body : 0;
   std::uint64_t needed = 0;
@@ -351,6 +361,7 @@ void check_declared_counts(const std::string& path, const std::string& text, con
                      "the header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
                          " faces" + others + ", more than the " + std::to_string(room) +
                          " bytes after it can hold: the file is truncated or its header is damaged.");
+  return {vertices, faces};
 }
 
 // Each of the first `count` data lines must hold finite numbers only.
@@ -380,86 +391,93 @@ void check_ascii_vertices(const std::string& path, const std::string& text,
   }
 }
 
-// OpenMesh turns PLY float colours into bytes without clamping (1.5 becomes 126/255,
-// -0.5 becomes 129/255), so a float face colour outside [0, 1] would silently become
-// some other colour. This walks the PLY body itself (ASCII or binary) and refuses such
-// colours, naming the face. Files whose faces have no float colours return at once; a
-// truncated body ends the walk quietly (the reader reports truncation afterwards).
-void check_ply_float_colours(const std::string& path, const std::string& text) {
+// Walks the PLY body (ASCII or binary) before OpenMesh does, for two things OpenMesh
+// gets wrong:
+// - a list count is believed whatever it says: OpenMesh appends that many indices,
+//   reading past the line or the end of the file, until memory runs out;
+// - float face colours become bytes without clamping (1.5 becomes 126/255, -0.5
+//   becomes 129/255), so a colour outside [0, 1] would silently become another.
+// Both are refused naming the element. A body that simply ends early ends the walk
+// quietly: the reader's own truncation checks then name what is missing.
+void check_ply_body(const std::string& path, const std::string& text) {
   auto is_colour = [](const std::string& name) {
     return name == "red" || name == "green" || name == "blue" || name == "diffuse_red" || name == "diffuse_green" ||
            name == "diffuse_blue";
   };
   const PlyHeader header = parse_ply_header(path, text);
-  const std::vector<PlyElement>& elements = header.elements;
-  const std::string& format = header.format;
-  const std::size_t body = header.body, header_lines = header.lines;
-  if (body > text.size()) return;
-  bool any = false;
-  for (const PlyElement& e : elements)
-    for (const PlyProperty& p : e.properties)
-      any |= e.name == "face" && p.floating && p.count_size == 0 && is_colour(p.name);
-  if (!any) return;
-
-  auto refuse = [&](std::uint64_t face, std::size_t line, const std::string& name, double value) {
+  if (header.body > text.size()) return;
+  auto check_colour = [&](const PlyElement& e, const PlyProperty& p, std::uint64_t record, std::size_t line,
+                          double value) {
+    if (e.name != "face" || !p.floating || !is_colour(p.name) || (value >= 0 && value <= 1)) return;
     std::ostringstream v;
     v << value;
     throw InputError(path, line,
-                     "face " + std::to_string(face) + " has colour " + name + " = " + v.str() +
+                     "face " + std::to_string(record) + " has colour " + p.name + " = " + v.str() +
                          ", outside [0, 1]. Float colours are display colours from 0 to 1; fix the file, or give "
                          "the faces a material in a scene file.");
   };
-  if (format == "ascii") {
-    std::istringstream in(text.substr(body));
-    std::size_t line_no = header_lines;
-    for (const PlyElement& e : elements) {
+  auto refuse_list = [&](const PlyElement& e, const PlyProperty& p, std::uint64_t record, std::size_t line,
+                         const std::string& count) {
+    throw InputError(path, line,
+                     e.name + " " + std::to_string(record) + ": the list '" + p.name + "' declares " + count +
+                         " entries, more than the " + (line > 0 ? "line" : "file") + " holds. The file is damaged.");
+  };
+
+  if (header.format == "ascii") {
+    std::istringstream in(text.substr(header.body));
+    std::size_t line_no = header.lines;
+    for (const PlyElement& e : header.elements) {
       for (std::uint64_t r = 0; r < e.count; ++r) {
         std::string line;
         do {
           if (!std::getline(in, line)) return;
           ++line_no;
         } while (line.find_first_not_of(" \t\r") == std::string::npos);
-        if (e.name != "face") continue;
-        std::istringstream tokens(line);
+        std::vector<std::string> tokens;
+        std::istringstream words(line);
+        for (std::string t; words >> t;) tokens.push_back(t);
+        std::size_t next = 0;
         for (const PlyProperty& p : e.properties) {
+          if (next >= tokens.size()) break;  // a short line: the reader reports it
+          const std::string& token = tokens[next++];
           if (p.count_size > 0) {
-            std::int64_t n = 0;
-            if (!(tokens >> n) || n < 0) return;
-            for (std::string skip; n > 0 && tokens >> skip;) --n;
+            char* end = nullptr;
+            const long long n = std::strtoll(token.c_str(), &end, 10);
+            if (*end != '\0' || n < 0 || static_cast<unsigned long long>(n) > tokens.size() - next)
+              refuse_list(e, p, r, line_no, token);
+            next += static_cast<std::size_t>(n);
             continue;
           }
-          std::string token;
-          if (!(tokens >> token)) return;
-          const double value = std::strtod(token.c_str(), nullptr);  // strtod reads "nan" and "inf" too
-          if (p.floating && is_colour(p.name) && !(value >= 0 && value <= 1)) refuse(r, line_no, p.name, value);
+          check_colour(e, p, r, line_no, std::strtod(token.c_str(), nullptr));  // strtod reads "nan" and "inf" too
         }
       }
     }
     return;
   }
-  const bool big_endian = format == "binary_big_endian";
-  std::size_t at = body;
-  auto read_bytes = [&](int size, unsigned char* out) {
+  const bool big_endian = header.format == "binary_big_endian";
+  std::size_t at = header.body;
+  auto read_bytes = [&](int size, unsigned char* out) {  // little-endian into `out`
     if (at + size > text.size()) return false;
     for (int i = 0; i < size; ++i) out[i] = static_cast<unsigned char>(text[at + (big_endian ? size - 1 - i : i)]);
     at += size;
     return true;
   };
-  for (const PlyElement& e : elements) {
+  for (const PlyElement& e : header.elements) {
     if (e.properties.empty()) continue;
     for (std::uint64_t r = 0; r < e.count; ++r) {
       for (const PlyProperty& p : e.properties) {
         unsigned char bytes[8] = {};
         if (p.count_size > 0) {
           if (!read_bytes(p.count_size, bytes)) return;
+          // Counts are read as unsigned: a negative int count is a huge one, and refused.
           std::uint64_t n = 0;
           for (int i = p.count_size - 1; i >= 0; --i) n = (n << 8) | bytes[i];
-          if (n > (text.size() - at) / p.size) return;
+          if (n > (text.size() - at) / p.size) refuse_list(e, p, r, 0, std::to_string(n));
           at += n * p.size;
           continue;
         }
         if (!read_bytes(p.size, bytes)) return;
-        if (e.name != "face" || !p.floating || !is_colour(p.name)) continue;
+        if (!p.floating) continue;
         double value = 0;  // the bytes are little-endian now, as on every machine we build for
         if (p.size == 4) {
           float f = 0;
@@ -468,9 +486,37 @@ void check_ply_float_colours(const std::string& path, const std::string& text) {
         } else {
           std::memcpy(&value, bytes, 8);
         }
-        if (!(value >= 0 && value <= 1)) refuse(r, 0, p.name, value);
+        check_colour(e, p, r, 0, value);
       }
     }
+  }
+}
+
+// ASCII OFF: each face line starts with its corner count, which OpenMesh believes (and
+// appends that many indices, whatever the line holds, until memory runs out). Each of
+// the `faces` lines after the `vertices` vertex lines must hold as many indices.
+void check_ascii_off_faces(const std::string& path, const std::string& parsed,
+                           const std::vector<std::uint32_t>& data_lines, std::uint64_t vertices, std::uint64_t faces) {
+  std::vector<std::size_t> line_start = {0};
+  for (std::size_t i = 0; i < parsed.size(); ++i)
+    if (parsed[i] == '\n') line_start.push_back(i + 1);
+  for (std::uint64_t f = 0; f < faces && vertices + f < data_lines.size(); ++f) {
+    const std::size_t line_no = data_lines[vertices + f];
+    const std::size_t begin = line_start[line_no - 1];
+    const std::size_t end = line_no < line_start.size() ? line_start[line_no] : parsed.size();
+    std::istringstream words(parsed.substr(begin, end - begin));
+    std::string count;
+    words >> count;
+    std::uint64_t n = 0;
+    if (!parse_count(count, n))
+      throw InputError(path, line_no,
+                       "face " + std::to_string(f) + " must start with its number of corners, not '" + count + "'.");
+    std::uint64_t indices = 0;
+    for (std::string t; indices < n && words >> t;) ++indices;
+    if (indices < n)
+      throw InputError(path, line_no,
+                       "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
+                           std::to_string(indices) + ". The file is damaged.");
   }
 }
 
@@ -494,11 +540,14 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
                          (sniffed.empty() ? std::string() : " (it looks like " + sniffed + ")") +
                          ". Is it mislabelled or damaged? Rename it to its real extension or re-export it.");
 
-  check_declared_counts(path, text, ext);
-  if (ext == ".ply") check_ply_float_colours(path, text);
+  const DeclaredCounts declared = check_declared_counts(path, text, ext);
+  if (ext == ".ply") check_ply_body(path, text);
   // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
   // (keeping line numbers) and parse from memory.
   const std::string parsed = ext == ".off" ? strip_comments(text) : text;
+  const bool ascii = is_ascii(text, ext) && ext != ".stl";
+  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
+  if (ascii && ext == ".off") check_ascii_off_faces(path, parsed, data_lines, declared.vertices, declared.faces);
 
   SoupImporter importer;
   importer.capacity = text.size();  // no format stores an element in less than a byte
@@ -518,8 +567,6 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   omerr().enable();
   if (importer.overflow) throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
 
-  const bool ascii = is_ascii(text, ext) && ext != ".stl";
-  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
   auto data_line = [&](std::size_t k) -> std::size_t { return k < data_lines.size() ? data_lines[k] : 0; };
   auto vertex_location = [&](std::size_t v) { return data_line(v); };
   // OpenMesh's ASCII parsers stop or misread at "nan"/"inf"; check the vertex lines

@@ -27,6 +27,8 @@ class SceneParser {
       doc = json::parse(text);
     } catch (const json::parse_error& e) {
       throw InputError(path_, line_of_byte(text, e.byte), std::string("invalid JSON: ") + e.what());
+    } catch (const json::exception& e) {  // e.g. out_of_range: a number beyond double's range
+      throw InputError(path_, 0, std::string("invalid JSON: ") + e.what());
     }
     if (!doc.is_object()) fail("the scene must be a JSON object with a \"meshes\" array.");
     check_keys(doc, "scene", {"meshes", "materials"});

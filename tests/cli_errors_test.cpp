@@ -132,6 +132,39 @@ TEST(BadInput, BinaryOffIsReadAndItsCountsChecked) {
   expect_refused(dir, dir.write("neg.off", binary_off(3, -5)), {"neg.off", "-5 faces"});
 }
 
+// Found by fuzzing: OpenMesh believes a face's corner count and appends that many
+// indices whatever the line or file holds (2 GB and counting); a PLY "format" line with
+// a damaged version made its header reader loop for ever.
+TEST(BadInput, CornerCountsBeyondTheDataAreRefused) {
+  TempDir dir;
+  expect_refused(dir, dir.write("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2222222222 0 1 2\n"),
+                 {"long.off:6", "declares 2222222222 corners but lists 3"});
+  expect_refused(dir, dir.write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0 1 2\n"),
+                 {"word.off:6", "number of corners, not '0.5'"});
+  const std::string header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list int int vertex_indices\nend_header\n";
+  expect_refused(dir, dir.write("list.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0\n1 0 0\n0 1 0\n9999 0 1 2\n"),
+                 {"list.ply:13", "declares 9999 entries"});
+  std::string binary = "ply\nformat binary_little_endian 1.0\n" + header;
+  for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) binary.append(reinterpret_cast<const char*>(&x), 4);
+  for (std::int32_t i : {-1, 0, 1, 2}) binary.append(reinterpret_cast<const char*>(&i), 4);
+  expect_refused(dir, dir.write("list_bin.ply", binary), {"list_bin.ply", "face 0", "declares 4294967295 entries"});
+  expect_refused(dir, dir.write("version.ply", "ply\nformat binary_little_endian ndices\nend_header\n"),
+                 {"version.ply:2", "unknown version 'ndices'"});
+  expect_refused(dir, dir.write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 3 4\n"),
+                 {"extra.ply:3", "unexpected '4'"});
+}
+
+// Found by fuzzing: a number beyond double's range made the JSON library throw an
+// exception that was not a parse error, which ended dynrad with "internal error".
+TEST(BadInput, SceneNumberBeyondDoubleRangeIsAnInputError) {
+  TempDir dir;
+  dir.write("t.obj", kTriangleObj);
+  expect_refused(dir, dir.write("big.json", R"({"meshes": [{"file": "t.obj", "transform": {"scale": 1e3083}}]})"),
+                 {"big.json", "invalid JSON", "1e3083"});
+}
+
 TEST(BadInput, MislabelledFiles) {
   TempDir dir;
   expect_refused(dir, dir.write("text.ply", kTriangleObj), {"text.ply", "mislabelled"});
