@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -171,9 +172,7 @@ std::vector<std::uint32_t> ascii_data_lines(const std::string& text, const std::
       lines.push_back(line_no);
     } else if (ext == ".ply") {
       in_data = line.rfind("end_header", 0) == 0;
-    } else if (++off_header_lines == 2) {  // "OFF", then "nv nf ne"
-      in_data = true;
-    } else if (line.find_first_of("0123456789") < 8) {  // "OFF nv nf ne" on one line
+    } else if (++off_header_lines == 2) {  // the keyword, then "nv nf ne" (check_declared_counts)
       in_data = true;
     }
   }
@@ -336,13 +335,36 @@ DeclaredCounts check_declared_counts(const std::string& path, const std::string&
       body += 1 + sizeof counts;
       records = {{vertices, 12}, {faces, 16}};
     } else {
-      std::istringstream in(strip_comments(text));
-      std::string magic, v, f;
-      in >> magic >> v >> f;
-      if (!parse_count(v, vertices) || !parse_count(f, faces))
-        throw InputError(
-            path, 0,
-            "the vertex and face counts after the OFF line must be whole numbers (found '" + v + "' and '" + f + "').");
+      // OpenMesh takes the whole first line as the keyword and the next three words as
+      // the counts, wherever they are. Both are held to one line each here, so that
+      // what OpenMesh reads and what is checked (and the line numbers) agree.
+      const std::string stripped = strip_comments(text);
+      std::istringstream in(stripped);
+      std::string magic_line, counts_line;
+      std::getline(in, magic_line);
+      std::istringstream magic_words(magic_line);
+      std::string magic, rest;
+      magic_words >> magic >> rest;
+      static const std::set<std::string> keywords = {"OFF",   "COFF",   "NOFF",   "CNOFF",
+                                                     "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
+      if (!keywords.count(magic) || !rest.empty())
+        throw InputError(path, 1,
+                         "the first line must hold only the keyword (OFF, COFF, NOFF, CNOFF or STOFF), not '" +
+                             magic_line + "'. Put the counts on the next line.");
+      std::size_t counts_line_no = 1;
+      while (std::getline(in, counts_line)) {
+        ++counts_line_no;
+        if (counts_line.find_first_not_of(" \t\r") != std::string::npos) break;
+      }
+      std::istringstream count_words(counts_line);
+      std::string v, f, e, extra;
+      count_words >> v >> f >> e >> extra;
+      std::uint64_t edges = 0;
+      if (!parse_count(v, vertices) || !parse_count(f, faces) || !parse_count(e, edges) || !extra.empty())
+        throw InputError(path, counts_line_no,
+                         "the line after the keyword must hold three whole numbers, the vertex, face and edge "
+                         "counts (found '" +
+                             counts_line + "').");
       body = in.tellg() < 0 ? text.size() : static_cast<std::size_t>(in.tellg());
       records = {{vertices, 3}, {faces, 4}};  // "x y z", and "3 a b c" at the least
     }

@@ -104,7 +104,7 @@ TEST(BadInput, NegativeOrHugeOffCountsFailFast) {
   TempDir dir;
   // The fuzzer's input, shortened: a face count of -2 made OpenMesh loop 2^32 times.
   expect_refused(dir, dir.write("neg.off", "COFF\n4 -2 0\n0 0 0 255 0 0 255\n1 0 0 0 0 255 255\n"),
-                 {"neg.off", "whole numbers", "'-2'"});
+                 {"neg.off:2", "whole numbers", "'4 -2 0'"});
   // Would overflow 64 bits when multiplied by the bytes a face needs.
   expect_refused(dir, dir.write("big.off", "OFF\n3 18446744073709551615 0\n0 0 0\n1 0 0\n0 1 0\n"),
                  {"big.off", "whole numbers"});
@@ -154,6 +154,28 @@ TEST(BadInput, CornerCountsBeyondTheDataAreRefused) {
                  {"version.ply:2", "unknown version 'ndices'"});
   expect_refused(dir, dir.write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 3 4\n"),
                  {"extra.ply:3", "unexpected '4'"});
+}
+
+// Found by fuzzing: OpenMesh takes the whole first line as the keyword and the next
+// three words as counts, wherever they are; "COFF\x12 8 2 0" then had it read counts
+// from past the end and allocate 4 GB. Keyword and counts now have a line each.
+TEST(BadInput, OffKeywordAndCountsMustHaveALineEach) {
+  TempDir dir;
+  expect_refused(dir,
+                 dir.write("k.off",
+                           "COFF\x12"
+                           "8 2 0\n#c\n"),
+                 {"k.off:1", "only the keyword"});
+  expect_refused(dir, dir.write("one.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                 {"one.off:1", "Put the counts on the next line"});
+  expect_refused(dir, dir.write("two.off", "OFF\n# counts\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                 {"two.off:3", "three whole numbers"});
+  const auto ok = test::run_dynrad("info '" +
+                                   dir.write("ok.off",
+                                             "NOFF\n\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n"
+                                             "0 1 0 0 0 1\n3 0 1 2\n") +
+                                   "'");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
 }
 
 // Found by fuzzing: a number beyond double's range made the JSON library throw an
