@@ -3,6 +3,9 @@
 #include "mesh/error.h"
 #include "mesh/import.h"
 
+#include <cmath>
+#include <limits>
+#include <sstream>
 #include <unordered_set>
 
 namespace dynrad {
@@ -28,12 +31,48 @@ std::string dropped_emitters(const PolygonSoup& soup, const TriangleSoup& clean)
          ", material '" + soup.materials[soup.material[first]].name + "'). Model a light as a polygon with an area.";
 }
 
+// Finite coordinates can still make sizes and powers that are not: 1e200 squared, or an
+// emission of 1e308 W/m² over a square metre. The solver would then compute with inf
+// and NaN; refuse such models with what overflowed.
+void check_magnitudes(const std::string& path, const SceneMesh& mesh) {
+  const double diagonal = mesh.bounds().diagonal(), area = mesh.total_area();
+  if (!std::isfinite(diagonal) || !std::isfinite(area))
+    throw InputError(path, 0,
+                     "is too large to compute with (its area overflows double precision). Scale it down: the units "
+                     "do not change the result.");
+  std::vector<double> material_area(mesh.materials().size(), 0.0);
+  for (auto f : mesh.mesh().faces()) material_area[mesh.material_id(f)] += mesh.area(f);
+  Rgb total;
+  for (std::size_t m = 0; m < material_area.size(); ++m) {
+    const Material& material = mesh.materials()[m];
+    total += material.emission * material_area[m];
+    if (!(material.emission * material_area[m]).is_finite() || !total.is_finite()) {
+      std::ostringstream emission;
+      emission << material.emission.max_channel();
+      throw InputError(path, 0,
+                       "material '" + material.name + "' (" + material.origin +
+                           ") emits more power than double precision can hold (emission " + emission.str() +
+                           " W/m² over its area). Use a physically plausible emission.");
+    }
+  }
+}
+
 }  // namespace
 
 LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
   const PolygonSoup soup = read_input(path);
   if (!is_finite(soup.bounds().lo) || !is_finite(soup.bounds().hi))
     throw InputError(path, 0, "has coordinates that are not finite.");
+  // Cleanup and the solver work with areas, the size squared: it must be a normal double.
+  const double size = soup.bounds().diagonal();
+  if (!std::isfinite(size * size) || size * size < std::numeric_limits<double>::min()) {
+    std::ostringstream across;
+    across << size;
+    throw InputError(path, 0,
+                     "is " + across.str() + " units across, too " + (size > 1 ? "large" : "small") +
+                         " to compute with in double precision. Scale it (a scene file's \"transform\" can): the "
+                         "units do not change the result.");
+  }
   TriangleSoup clean;
   LoadedScene scene;
   scene.cleanup = cleanup(soup, clean, options);
@@ -49,6 +88,7 @@ LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
                              scene.cleanup.first_problem + ").");
   if (const std::string warning = dropped_emitters(soup, clean); !warning.empty()) scene.warnings.push_back(warning);
   scene.mesh = std::make_unique<SceneMesh>(clean);
+  check_magnitudes(path, *scene.mesh);
   return scene;
 }
 

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs exactly the Debian 12 packages that dynrad's build, tests and CI need.
+# clang, libclang-rt-dev (libFuzzer and sanitizer runtimes) and llvm (llvm-symbolizer,
+# for readable sanitizer stacks) are for scripts/fuzz.sh and scripts/test-sanitizers.sh.
 # Safe to run repeatedly; needs root (or sudo).
 set -euo pipefail
 
@@ -10,6 +12,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
+  clang libclang-rt-dev llvm
 )
 
 missing=()
