@@ -358,16 +358,17 @@ TEST(HostileInput, HundredThousandMaterialsLoadInSeconds) {
       model.obj << "usemtl tile" << m << "\nf " << a << " " << a + 1 << " " << a + nx + 2 << " " << a + nx + 1 << "\n";
     }
   const std::string input = model.write(dir);
+  // Loading (read, cleanup, patches): about 2 s in a release build, 20 in a sanitizer
+  // build; lookups by name that were quadratic took more than 5 minutes.
   const auto start = std::chrono::steady_clock::now();
   const json counts = info(input);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 100.0);
   EXPECT_EQ(counts["materials"].size(), std::size_t(nx * ny + 2));
   EXPECT_EQ(counts["faces"].get<int>(), 2 * (nx * ny + 7));
-  const Solution s = solve(dir, input, "--iterations 2 --patch-size 0.3");
+  // And the solve copes with them.
+  const Solution s = solve(dir, input, "--iterations 1");
   expect_sane(s);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // About 3 s in a release build; quadratic lookups by name took minutes. The bound
-  // leaves room for sanitizer builds.
-  EXPECT_LT(seconds, 90.0);
 }
 
 TEST(HostileInput, EmitterCoveringEverythingIsAFurnace) {

@@ -60,10 +60,10 @@ TEST(NoLostWork, FailedSolvesLeaveEveryExistingOutputUntouched) {
 TEST(NoLostWork, KilledSolveLeavesExistingOutputsUntouched) {
   TempDir dir;
   const Outputs out = existing_outputs(dir);
-  const auto r = test::run_shell(std::string("( '") + DYNRAD_EXE + "' solve '" +
-                                 test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
-                                 " --patch-size 0.15 --converge 1e-9 --time-limit 60 & pid=$!; sleep 2; "
-                                 "kill -KILL $pid; wait $pid; echo exit=$? )");
+  const auto r =
+      test::run_dynrad_and_signal("solve '" + test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
+                                      " --patch-size 0.15 --converge 1e-9 --time-limit 600",
+                                  1.0, "KILL");
   EXPECT_NE(r.output.find("exit=137"), std::string::npos) << r.output;  // 128 + SIGKILL: it was still running
   expect_untouched(dir, out);
 }
@@ -72,10 +72,10 @@ TEST(NoLostWork, KilledSolveLeavesExistingOutputsUntouched) {
 TEST(NoLostWork, InterruptedSolveReplacesEveryOutputWithACompleteOne) {
   TempDir dir;
   const Outputs out = existing_outputs(dir);
-  const auto r = test::run_shell(std::string("( '") + DYNRAD_EXE + "' solve '" +
-                                 test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
-                                 " --patch-size 0.15 --converge 1e-9 --time-limit 60 & pid=$!; sleep 2; "
-                                 "kill -INT $pid; wait $pid; echo exit=$? )");
+  const auto r =
+      test::run_dynrad_and_signal("solve '" + test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
+                                      " --patch-size 0.15 --converge 1e-9 --time-limit 600",
+                                  2.0, "INT");
   EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
   const auto report = nlohmann::json::parse(test::read_text(out.report));
   EXPECT_EQ(report["stopped_by"], "interrupted");
