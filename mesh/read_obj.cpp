@@ -9,11 +9,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <unordered_map>
 
 namespace dynrad {
 namespace detail {
@@ -23,10 +24,10 @@ PolygonSoup read_obj(const std::string& path);
 namespace {
 
 struct ObjLines {
-  std::vector<std::uint32_t> face_lines;        // line of each `f`, in file order
-  std::vector<std::uint32_t> face_usemtl;       // index into usemtl_names, or UINT32_MAX
-  std::vector<std::string> usemtl_names;        // in order of first use
-  std::vector<std::uint32_t> usemtl_lines;      // line of first use
+  std::vector<std::uint32_t> face_lines;    // line of each `f`, in file order
+  std::vector<std::uint32_t> face_usemtl;   // index into usemtl_names, or UINT32_MAX
+  std::vector<std::string> usemtl_names;    // in order of first use
+  std::vector<std::uint32_t> usemtl_lines;  // line of first use
 };
 
 std::vector<std::string> split_ws(const std::string& s) {
@@ -54,6 +55,7 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
   std::size_t vertex_count = 0;
   std::size_t line_no = 0;
   std::uint32_t current_material = UINT32_MAX;
+  std::unordered_map<std::string, std::uint32_t> usemtl_index;  // models with 10^5 materials exist
   std::istringstream in(text);
   const fs::path dir = fs::path(path).parent_path();
   for (std::string line; std::getline(in, line);) {
@@ -65,17 +67,17 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
     const auto at = static_cast<std::uint32_t>(line_no);
     if (key == "v") {
       if (tokens.size() < 4)
-        throw InputError(path, line_no,
-                         "vertex has " + std::to_string(tokens.size() - 1) +
-                             " coordinates, 3 are needed (is the file truncated?).");
+        throw InputError(
+            path, line_no,
+            "vertex has " + std::to_string(tokens.size() - 1) + " coordinates, 3 are needed (is the file truncated?).");
       for (int i = 1; i <= 3; ++i) {
         double value = 0;
         if (!parse_double(tokens[i], value))
           throw InputError(path, line_no, "vertex coordinate '" + tokens[i] + "' is not a number.");
         if (!std::isfinite(value))
-          throw InputError(path, line_no,
-                           "vertex coordinate '" + tokens[i] +
-                               "' is not finite. Fix or remove this vertex in the modelling tool.");
+          throw InputError(
+              path, line_no,
+              "vertex coordinate '" + tokens[i] + "' is not finite. Fix or remove this vertex in the modelling tool.");
       }
       ++vertex_count;
     } else if (key == "f") {
@@ -106,9 +108,9 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
                                "). Put the .mtl file next to the .obj or remove the mtllib line.");
       }
     } else if (key == "usemtl" && tokens.size() >= 2) {
-      auto it = std::find(result.usemtl_names.begin(), result.usemtl_names.end(), tokens[1]);
-      current_material = static_cast<std::uint32_t>(it - result.usemtl_names.begin());
-      if (it == result.usemtl_names.end()) {
+      const auto [it, added] = usemtl_index.emplace(tokens[1], static_cast<std::uint32_t>(result.usemtl_names.size()));
+      current_material = it->second;
+      if (added) {
         result.usemtl_names.push_back(tokens[1]);
         result.usemtl_lines.push_back(at);
       }
@@ -117,16 +119,19 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
   return result;
 }
 
-// Line of `newmtl NAME` in an MTL file, for messages about that material; 0 if not found.
-std::size_t find_newmtl_line(const std::string& mtl_path, const std::string& name) {
+// Line of the first `newmtl NAME` of every material in an MTL file, for messages about
+// that material. One pass per file: looking each material up separately would read the
+// file once per material.
+std::unordered_map<std::string, std::size_t> newmtl_lines(const std::string& mtl_path) {
+  std::unordered_map<std::string, std::size_t> lines;
   std::ifstream in(mtl_path);
   std::size_t line_no = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
     const auto tokens = split_ws(line);
-    if (tokens.size() >= 2 && tokens[0] == "newmtl" && tokens[1] == name) return line_no;
+    if (tokens.size() >= 2 && tokens[0] == "newmtl") lines.emplace(tokens[1], line_no);
   }
-  return 0;
+  return lines;
 }
 
 std::vector<std::string> mtl_libraries(const std::string& text) {
@@ -150,8 +155,7 @@ PolygonSoup detail::read_obj(const std::string& path) {
   config.triangulate = false;  // CGAL triangulates, concave polygons included
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config))
-    throw InputError(path, 0, "OBJ parse failed: " + reader.Error());
+  if (!reader.ParseFromFile(path, config)) throw InputError(path, 0, "OBJ parse failed: " + reader.Error());
 
   PolygonSoup soup;
   soup.files.push_back(path);
@@ -163,35 +167,43 @@ PolygonSoup detail::read_obj(const std::string& path) {
   // Materials: tinyobjloader's list, then undefined names that `usemtl` refers to.
   const fs::path dir = fs::path(path).parent_path();
   const auto libs = mtl_libraries(text);
+  std::vector<std::pair<std::string, std::unordered_map<std::string, std::size_t>>> lib_lines;
+  for (const auto& lib : libs) {
+    const std::string lib_path = (dir / lib).string();
+    lib_lines.emplace_back(lib_path, newmtl_lines(lib_path));
+  }
+  std::unordered_map<std::string, std::uint32_t> material_index;
   for (const auto& m : reader.GetMaterials()) {
     Material mat;
     mat.name = m.name;
     mat.reflectance = Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
     mat.emission = Rgb(m.emission[0], m.emission[1], m.emission[2]);
     mat.origin = libs.empty() ? path : (dir / libs.front()).string();
-    for (const auto& lib : libs) {
-      const std::string lib_path = (dir / lib).string();
-      if (std::size_t l = find_newmtl_line(lib_path, m.name)) {
-        mat.origin = lib_path + ":" + std::to_string(l);
+    for (const auto& [lib_path, lines_of] : lib_lines) {
+      const auto at = lines_of.find(m.name);
+      if (at != lines_of.end()) {
+        mat.origin = lib_path + ":" + std::to_string(at->second);
         break;
       }
     }
+    material_index.emplace(mat.name, static_cast<std::uint32_t>(soup.materials.size()));
     soup.materials.push_back(mat);
   }
   // Each `usemtl` name maps to a material; names no MTL defines stay as placeholders
   // (defined == false) that a scene file may still define.
   std::vector<std::uint32_t> usemtl_material(lines.usemtl_names.size());
   for (std::size_t u = 0; u < lines.usemtl_names.size(); ++u) {
-    int index = soup.find_material(lines.usemtl_names[u]);
-    if (index < 0) {
-      Material undefined;
-      undefined.name = lines.usemtl_names[u];
-      undefined.defined = false;
-      undefined.origin = path + ":" + std::to_string(lines.usemtl_lines[u]);
-      soup.materials.push_back(undefined);
-      index = static_cast<int>(soup.materials.size() - 1);
+    const auto known = material_index.find(lines.usemtl_names[u]);
+    if (known != material_index.end()) {
+      usemtl_material[u] = known->second;
+      continue;
     }
-    usemtl_material[u] = static_cast<std::uint32_t>(index);
+    Material undefined;
+    undefined.name = lines.usemtl_names[u];
+    undefined.defined = false;
+    undefined.origin = path + ":" + std::to_string(lines.usemtl_lines[u]);
+    usemtl_material[u] = static_cast<std::uint32_t>(soup.materials.size());
+    soup.materials.push_back(undefined);
   }
   auto default_material = [&soup, index = -1]() mutable {
     if (index < 0) index = soup.find_material("default");
@@ -213,8 +225,12 @@ PolygonSoup detail::read_obj(const std::string& path) {
                          std::to_string(total_faces) + " faces; the file may be malformed.");
 
   std::size_t face = 0;
+  std::unordered_map<std::string, std::uint32_t> group_index;
   for (const auto& shape : reader.GetShapes()) {
-    const std::uint32_t group = soup.find_or_add_group(shape.name.empty() ? "default" : shape.name);
+    const std::string& group_name = shape.name.empty() ? std::string("default") : shape.name;
+    const auto [known, added] = group_index.emplace(group_name, static_cast<std::uint32_t>(soup.group_names.size()));
+    if (added) soup.group_names.push_back(group_name);
+    const std::uint32_t group = known->second;
     std::size_t offset = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
       const std::size_t n = shape.mesh.num_face_vertices[f];

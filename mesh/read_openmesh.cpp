@@ -9,8 +9,12 @@
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -168,9 +172,7 @@ std::vector<std::uint32_t> ascii_data_lines(const std::string& text, const std::
       lines.push_back(line_no);
     } else if (ext == ".ply") {
       in_data = line.rfind("end_header", 0) == 0;
-    } else if (++off_header_lines == 2) {  // "OFF", then "nv nf ne"
-      in_data = true;
-    } else if (line.find_first_of("0123456789") < 8) {  // "OFF nv nf ne" on one line
+    } else if (++off_header_lines == 2) {  // the keyword, then "nv nf ne" (check_declared_counts)
       in_data = true;
     }
   }
@@ -190,48 +192,203 @@ std::string strip_comments(const std::string& text) {
   return out;
 }
 
+// A PLY header, parsed and checked before OpenMesh sees it: OpenMesh's reader writes
+// through a property line that no element line precedes (a crash), and reads counts
+// that do not fit its 32-bit integers as whatever they wrap to.
+struct PlyProperty {
+  std::string name;
+  int size = 0;        // bytes of a scalar, or of each list item
+  int count_size = 0;  // bytes of a list's count; 0 for scalars
+  bool floating = false;
+};
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::string format;  // ascii, binary_little_endian, binary_big_endian
+  std::vector<PlyElement> elements;
+  std::size_t body = 0;   // offset of the first byte after end_header's line
+  std::size_t lines = 0;  // lines up to and including end_header
+};
+
+int ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+// A count: digits only (OpenMesh reads "-2" as 4294967294), at most 18 of them so that
+// sums of counts cannot overflow. Whether the file can hold them is checked later.
+bool parse_count(const std::string& token, std::uint64_t& count) {
+  if (token.empty() || token.size() > 18 || token.find_first_not_of("0123456789") != std::string::npos) return false;
+  count = std::stoull(token);
+  return true;
+}
+
+PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
+  PlyHeader header;
+  std::istringstream in(text);
+  bool ended = false;
+  for (std::string line; std::getline(in, line);) {
+    ++header.lines;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    auto bad = [&](const std::string& what) {
+      throw InputError(path, header.lines, "PLY header: " + what + " The file is damaged or not really PLY.");
+    };
+    if (header.lines == 1) {
+      if (key != "ply") bad("the first line must be 'ply'.");
+    } else if (key == "end_header") {
+      header.body = in.tellg() < 0 ? text.size() : static_cast<std::size_t>(in.tellg());
+      ended = true;
+      break;
+    } else if (key == "format") {
+      std::string version;
+      words >> header.format >> version;
+      if (header.format != "ascii" && header.format != "binary_little_endian" && header.format != "binary_big_endian")
+        bad("unknown format '" + header.format + "' (ascii, binary_little_endian or binary_big_endian).");
+      if (version != "1.0") bad("unknown version '" + version + "' (1.0).");
+    } else if (key == "element") {
+      PlyElement e;
+      std::string count;
+      words >> e.name >> count;
+      if (e.name.empty() || !parse_count(count, e.count))
+        bad("'" + line + "' must be 'element NAME COUNT' with a whole number as the count.");
+      header.elements.push_back(e);
+    } else if (key == "property") {
+      if (header.elements.empty()) bad("a property comes before any element.");
+      std::string type, a, b;
+      words >> type >> a;
+      PlyProperty p;
+      if (type == "list") {
+        words >> b >> p.name;
+        p.count_size = ply_type_size(a);
+        p.size = ply_type_size(b);
+        if (p.count_size == 0 || p.size == 0 || p.name.empty()) bad("'" + line + "' is not a valid list property.");
+      } else {
+        p.name = a;
+        p.size = ply_type_size(type);
+        p.floating = type.rfind("float", 0) == 0 || type == "double";
+        if (p.size == 0 || p.name.empty()) bad("'" + line + "' has an unknown type or no name.");
+      }
+      header.elements.back().properties.push_back(p);
+    } else if (key != "comment" && key != "obj_info" && !key.empty()) {
+      bad("unknown keyword '" + key + "'.");
+    }
+    // OpenMesh reads the header word by word: a word too many would be read as the
+    // next keyword.
+    std::string extra;
+    if (key != "comment" && key != "obj_info" && words >> extra)
+      bad("unexpected '" + extra + "' at the end of the line.");
+  }
+  if (!ended) throw InputError(path, 0, "PLY header has no end_header line: the file is truncated or damaged.");
+  if (header.format.empty()) throw InputError(path, 0, "PLY header has no format line.");
+  return header;
+}
+
 // A damaged header can declare billions of elements; readers would then allocate or
 // loop until the machine gives up. Refuse counts the file's size cannot hold.
-void check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
+struct DeclaredCounts {
   std::uint64_t vertices = 0, faces = 0;
+};
+
+DeclaredCounts check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
+  std::uint64_t vertices = 0, faces = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> records;  // (count, least bytes per record)
+  std::string others;    // PLY elements other than vertex and face, for the message
   std::size_t body = 0;  // offset where element data starts
   if (ext == ".ply") {
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-      std::istringstream words(line);
-      std::string key, name;
-      std::uint64_t count = 0;
-      words >> key;
-      if (key == "end_header") {
-        body = static_cast<std::size_t>(in.tellg());
-        break;
-      }
-      if (key == "element" && (words >> name >> count)) {
-        if (name == "vertex") vertices = count;
-        if (name == "face") faces = count;
-      }
+    const PlyHeader header = parse_ply_header(path, text);
+    for (const PlyElement& e : header.elements) {
+      if (e.name == "vertex") vertices = e.count;
+      if (e.name == "face") faces = e.count;
+      if (e.name != "vertex" && e.name != "face" && e.count > 0)
+        others += ", " + std::to_string(e.count) + " " + e.name + " elements";
+      // Every property value takes a byte at least (a digit and a separator in ASCII).
+      records.emplace_back(e.count, std::max<std::uint64_t>(1, e.properties.size()));
     }
+    body = header.body;
   } else if (ext == ".off") {
-    if (text.find("BINARY") < 16) return;  // binary OFF: counts are binary, OpenMesh checks them
-    std::istringstream in(strip_comments(text));
-    std::string magic;
-    in >> magic;
-    if (!(in >> vertices >> faces)) throw InputError(path, 0, "has no valid vertex and face counts after the OFF line.");
-    body = static_cast<std::size_t>(in.tellg());
+    if (text.find("BINARY") < 16) {
+      // Binary OFF as OpenMesh reads and writes it: after the first line, three 32-bit
+      // little-endian counts (vertices, faces, edges); a vertex is at least 3 floats, a
+      // face at least a count and 3 indices. OpenMesh loops over whatever they say.
+      body = text.find('\n');
+      std::int32_t counts[3] = {0, 0, 0};
+      if (body == std::string::npos || text.size() < body + 1 + sizeof counts)
+        throw InputError(path, 0, "binary OFF without vertex and face counts: the file is truncated.");
+      std::memcpy(counts, text.data() + body + 1, sizeof counts);
+      if (counts[0] < 0 || counts[1] < 0)
+        throw InputError(path, 0,
+                         "binary OFF declares " + std::to_string(counts[0]) + " vertices and " +
+                             std::to_string(counts[1]) +
+                             " faces: the header is damaged (or big-endian, which "
+                             "dynrad does not read; convert the file to PLY).");
+      vertices = static_cast<std::uint64_t>(counts[0]);
+      faces = static_cast<std::uint64_t>(counts[1]);
+      body += 1 + sizeof counts;
+      records = {{vertices, 12}, {faces, 16}};
+    } else {
+      // OpenMesh takes the whole first line as the keyword and the next three words as
+      // the counts, wherever they are. Both are held to one line each here, so that
+      // what OpenMesh reads and what is checked (and the line numbers) agree.
+      const std::string stripped = strip_comments(text);
+      std::istringstream in(stripped);
+      std::string magic_line, counts_line;
+      std::getline(in, magic_line);
+      std::istringstream magic_words(magic_line);
+      std::string magic, rest;
+      magic_words >> magic >> rest;
+      static const std::set<std::string> keywords = {"OFF",   "COFF",   "NOFF",   "CNOFF",
+                                                     "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
+      if (!keywords.count(magic) || !rest.empty())
+        throw InputError(path, 1,
+                         "the first line must hold only the keyword (OFF, COFF, NOFF, CNOFF or STOFF), not '" +
+                             magic_line + "'. Put the counts on the next line.");
+      std::size_t counts_line_no = 1;
+      while (std::getline(in, counts_line)) {
+        ++counts_line_no;
+        if (counts_line.find_first_not_of(" \t\r") != std::string::npos) break;
+      }
+      std::istringstream count_words(counts_line);
+      std::string v, f, e, extra;
+      count_words >> v >> f >> e >> extra;
+      std::uint64_t edges = 0;
+      if (!parse_count(v, vertices) || !parse_count(f, faces) || !parse_count(e, edges) || !extra.empty())
+        throw InputError(path, counts_line_no,
+                         "the line after the keyword must hold three whole numbers, the vertex, face and edge "
+                         "counts (found '" +
+                             counts_line + "').");
+      body = in.tellg() < 0 ? text.size() : static_cast<std::size_t>(in.tellg());
+      records = {{vertices, 3}, {faces, 4}};  // "x y z", and "3 a b c" at the least
+    }
   } else {
-    return;  // STL: the count is implied by the size (binary) or absent (ASCII)
+    return {};  // STL: the count is implied by the size (binary) or absent (ASCII)
   }
   const std::uint64_t room = text.size() > body ? text.size() - body : 0;
-  if (vertices * 3 + faces * 4 > room)
+  std::uint64_t needed = 0;
+  bool fits = true;
+  for (const auto& [count, bytes] : records) {
+    fits = fits && count <= (room - needed) / bytes;
+    if (fits) needed += count * bytes;
+  }
+  if (!fits)
     throw InputError(path, 0,
                      "the header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                         " faces, more than the " + std::to_string(room) +
+                         " faces" + others + ", more than the " + std::to_string(room) +
                          " bytes after it can hold: the file is truncated or its header is damaged.");
+  return {vertices, faces};
 }
 
 // Each of the first `count` data lines must hold finite numbers only.
-void check_ascii_vertices(const std::string& path, const std::string& text, const std::vector<std::uint32_t>& data_lines,
-                          std::size_t count) {
+void check_ascii_vertices(const std::string& path, const std::string& text,
+                          const std::vector<std::uint32_t>& data_lines, std::size_t count) {
   std::vector<std::string_view> lines;
   std::size_t start = 0;
   while (start <= text.size()) {
@@ -256,6 +413,135 @@ void check_ascii_vertices(const std::string& path, const std::string& text, cons
   }
 }
 
+// Walks the PLY body (ASCII or binary) before OpenMesh does, for two things OpenMesh
+// gets wrong:
+// - a list count is believed whatever it says: OpenMesh appends that many indices,
+//   reading past the line or the end of the file, until memory runs out;
+// - float face colours become bytes without clamping (1.5 becomes 126/255, -0.5
+//   becomes 129/255), so a colour outside [0, 1] would silently become another.
+// Both are refused naming the element. A body that simply ends early ends the walk
+// quietly: the reader's own truncation checks then name what is missing.
+void check_ply_body(const std::string& path, const std::string& text) {
+  auto is_colour = [](const std::string& name) {
+    return name == "red" || name == "green" || name == "blue" || name == "diffuse_red" || name == "diffuse_green" ||
+           name == "diffuse_blue";
+  };
+  const PlyHeader header = parse_ply_header(path, text);
+  if (header.body > text.size()) return;
+  auto check_colour = [&](const PlyElement& e, const PlyProperty& p, std::uint64_t record, std::size_t line,
+                          double value) {
+    if (e.name != "face" || !p.floating || !is_colour(p.name) || (value >= 0 && value <= 1)) return;
+    std::ostringstream v;
+    v << value;
+    throw InputError(path, line,
+                     "face " + std::to_string(record) + " has colour " + p.name + " = " + v.str() +
+                         ", outside [0, 1]. Float colours are display colours from 0 to 1; fix the file, or give "
+                         "the faces a material in a scene file.");
+  };
+  auto refuse_list = [&](const PlyElement& e, const PlyProperty& p, std::uint64_t record, std::size_t line,
+                         const std::string& count) {
+    throw InputError(path, line,
+                     e.name + " " + std::to_string(record) + ": the list '" + p.name + "' declares " + count +
+                         " entries, more than the " + (line > 0 ? "line" : "file") + " holds. The file is damaged.");
+  };
+
+  if (header.format == "ascii") {
+    std::istringstream in(text.substr(header.body));
+    std::size_t line_no = header.lines;
+    for (const PlyElement& e : header.elements) {
+      for (std::uint64_t r = 0; r < e.count; ++r) {
+        std::string line;
+        do {
+          if (!std::getline(in, line)) return;
+          ++line_no;
+        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        std::vector<std::string> tokens;
+        std::istringstream words(line);
+        for (std::string t; words >> t;) tokens.push_back(t);
+        std::size_t next = 0;
+        for (const PlyProperty& p : e.properties) {
+          if (next >= tokens.size()) break;  // a short line: the reader reports it
+          const std::string& token = tokens[next++];
+          if (p.count_size > 0) {
+            char* end = nullptr;
+            const long long n = std::strtoll(token.c_str(), &end, 10);
+            if (*end != '\0' || n < 0 || static_cast<unsigned long long>(n) > tokens.size() - next)
+              refuse_list(e, p, r, line_no, token);
+            next += static_cast<std::size_t>(n);
+            continue;
+          }
+          check_colour(e, p, r, line_no, std::strtod(token.c_str(), nullptr));  // strtod reads "nan" and "inf" too
+        }
+      }
+    }
+    return;
+  }
+  const bool big_endian = header.format == "binary_big_endian";
+  std::size_t at = header.body;
+  auto read_bytes = [&](int size, unsigned char* out) {  // little-endian into `out`
+    if (at + size > text.size()) return false;
+    for (int i = 0; i < size; ++i) out[i] = static_cast<unsigned char>(text[at + (big_endian ? size - 1 - i : i)]);
+    at += size;
+    return true;
+  };
+  for (const PlyElement& e : header.elements) {
+    if (e.properties.empty()) continue;
+    for (std::uint64_t r = 0; r < e.count; ++r) {
+      for (const PlyProperty& p : e.properties) {
+        unsigned char bytes[8] = {};
+        if (p.count_size > 0) {
+          if (!read_bytes(p.count_size, bytes)) return;
+          // Counts are read as unsigned: a negative int count is a huge one, and refused.
+          std::uint64_t n = 0;
+          for (int i = p.count_size - 1; i >= 0; --i) n = (n << 8) | bytes[i];
+          if (n > (text.size() - at) / p.size) refuse_list(e, p, r, 0, std::to_string(n));
+          at += n * p.size;
+          continue;
+        }
+        if (!read_bytes(p.size, bytes)) return;
+        if (!p.floating) continue;
+        double value = 0;  // the bytes are little-endian now, as on every machine we build for
+        if (p.size == 4) {
+          float f = 0;
+          std::memcpy(&f, bytes, 4);
+          value = f;
+        } else {
+          std::memcpy(&value, bytes, 8);
+        }
+        check_colour(e, p, r, 0, value);
+      }
+    }
+  }
+}
+
+// ASCII OFF: each face line starts with its corner count, which OpenMesh believes (and
+// appends that many indices, whatever the line holds, until memory runs out). Each of
+// the `faces` lines after the `vertices` vertex lines must hold as many indices.
+void check_ascii_off_faces(const std::string& path, const std::string& parsed,
+                           const std::vector<std::uint32_t>& data_lines, std::uint64_t vertices, std::uint64_t faces) {
+  std::vector<std::size_t> line_start = {0};
+  for (std::size_t i = 0; i < parsed.size(); ++i)
+    if (parsed[i] == '\n') line_start.push_back(i + 1);
+  for (std::uint64_t f = 0; f < faces && vertices + f < data_lines.size(); ++f) {
+    const std::size_t line_no = data_lines[vertices + f];
+    const std::size_t begin = line_start[line_no - 1];
+    const std::size_t end = line_no < line_start.size() ? line_start[line_no] : parsed.size();
+    std::istringstream words(parsed.substr(begin, end - begin));
+    std::string count;
+    words >> count;
+    std::uint64_t n = 0;
+    if (!parse_count(count, n))
+      throw InputError(path, line_no,
+                       "face " + std::to_string(f) + " must start with its number of corners, not '" + count + "'.");
+    std::uint64_t indices = 0;
+    for (std::string t; indices < n && words >> t;) ++indices;
+    if (indices < n)
+      throw InputError(path, line_no,
+                       "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
+                           std::to_string(indices) + ". The file is damaged.");
+  }
+}
+
 bool is_ascii(const std::string& text, const std::string& ext) {
   if (ext == ".off") return text.rfind("OFF BINARY", 0) != 0 && text.find("BINARY") > 16;
   if (ext == ".ply") return text.find("format ascii") != std::string::npos;
@@ -276,10 +562,14 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
                          (sniffed.empty() ? std::string() : " (it looks like " + sniffed + ")") +
                          ". Is it mislabelled or damaged? Rename it to its real extension or re-export it.");
 
-  check_declared_counts(path, text, ext);
+  const DeclaredCounts declared = check_declared_counts(path, text, ext);
+  if (ext == ".ply") check_ply_body(path, text);
   // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
   // (keeping line numbers) and parse from memory.
   const std::string parsed = ext == ".off" ? strip_comments(text) : text;
+  const bool ascii = is_ascii(text, ext) && ext != ".stl";
+  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
+  if (ascii && ext == ".off") check_ascii_off_faces(path, parsed, data_lines, declared.vertices, declared.faces);
 
   SoupImporter importer;
   importer.capacity = text.size();  // no format stores an element in less than a byte
@@ -287,18 +577,18 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   // OpenMesh prints its own parse complaints; ours below are more specific.
   omerr().disable();
   bool ok = false;
-  if (ext == ".stl") {
-    ok = OpenMesh::IO::IOManager().read(path, importer, options);  // STL needs the file to tell ASCII from binary
+  const bool binary_off = ext == ".off" && !is_ascii(text, ext);
+  if (ext == ".stl" || binary_off) {
+    // STL needs the file to tell ASCII from binary; OpenMesh reads binary OFF from a
+    // stream as if it were text.
+    ok = OpenMesh::IO::IOManager().read(path, importer, options);
   } else {
     std::istringstream stream(parsed);  // the text already in memory: no second read from disk
     ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
   }
   omerr().enable();
-  if (importer.overflow)
-    throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
+  if (importer.overflow) throw InputError(path, 0, "holds more elements than its size allows: the file is damaged.");
 
-  const bool ascii = is_ascii(text, ext) && ext != ".stl";
-  const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
   auto data_line = [&](std::size_t k) -> std::size_t { return k < data_lines.size() ? data_lines[k] : 0; };
   auto vertex_location = [&](std::size_t v) { return data_line(v); };
   // OpenMesh's ASCII parsers stop or misread at "nan"/"inf"; check the vertex lines
@@ -336,26 +626,33 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   Material fallback;
   fallback.name = "default";
   fallback.origin = "built-in default (grey, reflectance 0.5)";
-  // One material per distinct face colour, named after the colour.
-  std::vector<std::pair<Rgb, std::uint32_t>> colour_materials;
+  // One material per distinct face colour, named after the colour. A PLY can have a
+  // million distinct colours, so they are found through a map.
+  std::map<std::array<double, 3>, std::uint32_t> colour_materials;
   std::size_t clamped = 0;
+  int default_index = -1;
   auto material_for = [&](std::size_t f) -> std::uint32_t {
     if (!importer.has_color[f]) {
-      int m = soup.find_material("default");
-      if (m < 0) {
+      if (default_index < 0) {
+        default_index = static_cast<int>(soup.materials.size());
         soup.materials.push_back(fallback);
-        m = static_cast<int>(soup.materials.size() - 1);
       }
-      return static_cast<std::uint32_t>(m);
+      return static_cast<std::uint32_t>(default_index);
     }
     // Face colours are display colours, not measured albedo: white would mean a
     // perfect reflector, so each channel is clamped to kMaxColourReflectance.
     const Rgb raw = importer.face_color[f];
+    if (!raw.is_finite())
+      throw InputError(path, data_line(soup.points.size() + f),
+                       "face " + std::to_string(f) +
+                           " has a colour that is not a finite number. Fix it in the "
+                           "modelling tool.");
     const Rgb c(std::min(raw.r, kMaxColourReflectance), std::min(raw.g, kMaxColourReflectance),
                 std::min(raw.b, kMaxColourReflectance));
     if (c != raw) ++clamped;
-    for (const auto& [colour, index] : colour_materials)
-      if (colour == c) return index;
+    const auto [known, added] = colour_materials.emplace(std::array<double, 3>{c.r, c.g, c.b},
+                                                         static_cast<std::uint32_t>(soup.materials.size()));
+    if (!added) return known->second;
     Material m;
     std::ostringstream name;
     name.precision(3);
@@ -364,8 +661,7 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
     m.reflectance = c;
     m.origin = path + " face " + std::to_string(f) + " (face colour)";
     soup.materials.push_back(m);
-    colour_materials.emplace_back(c, static_cast<std::uint32_t>(soup.materials.size() - 1));
-    return colour_materials.back().second;
+    return known->second;
   };
   for (std::size_t f = 0; f < importer.polygons.size(); ++f) {
     if (importer.polygons[f].size() < 3) continue;  // cleanup counts what it removes; this never held a face

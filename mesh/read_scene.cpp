@@ -27,6 +27,8 @@ class SceneParser {
       doc = json::parse(text);
     } catch (const json::parse_error& e) {
       throw InputError(path_, line_of_byte(text, e.byte), std::string("invalid JSON: ") + e.what());
+    } catch (const json::exception& e) {  // e.g. out_of_range: a number beyond double's range
+      throw InputError(path_, 0, std::string("invalid JSON: ") + e.what());
     }
     if (!doc.is_object()) fail("the scene must be a JSON object with a \"meshes\" array.");
     check_keys(doc, "scene", {"meshes", "materials"});
@@ -114,7 +116,8 @@ class SceneParser {
     }
     Matrix m = identity();
     if (t.contains("scale")) {
-      Vec3d s = t["scale"].is_number() ? Vec3d(number(t["scale"], where + ".scale")) : vec3(t["scale"], where + ".scale");
+      Vec3d s =
+          t["scale"].is_number() ? Vec3d(number(t["scale"], where + ".scale")) : vec3(t["scale"], where + ".scale");
       Matrix sm = identity();
       for (int i = 0; i < 3; ++i) sm[i][i] = s[i];
       m = multiply(sm, m);
@@ -225,6 +228,8 @@ class SceneParser {
     m.origin = path_ + " (" + where + ")";
     if (def.contains("reflectance")) m.reflectance = rgb(def["reflectance"], where + ".reflectance");
     if (def.contains("emission")) m.emission = rgb(def["emission"], where + ".emission");
+    // Checked here even when no face uses it: a definition that is wrong is wrong.
+    if (def.contains("reflectance") || def.contains("emission")) check_material(m, path_);
     const int existing = scene.find_material(name);
     if (existing < 0) {
       scene.warnings.push_back(path_ + ": material \"" + name + "\" is defined but no face uses it.");

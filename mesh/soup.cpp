@@ -31,18 +31,24 @@ void PolygonSoup::append(const PolygonSoup& other) {
   files.insert(files.end(), other.files.begin(), other.files.end());
   warnings.insert(warnings.end(), other.warnings.begin(), other.warnings.end());
 
+  // By name through hash maps: a model may bring 10^5 materials or groups.
+  std::unordered_map<std::string, std::uint32_t> material_index;
+  for (std::size_t m = materials.size(); m-- > 0;) material_index[materials[m].name] = static_cast<std::uint32_t>(m);
   std::vector<std::uint32_t> material_map(other.materials.size());
   for (std::size_t m = 0; m < other.materials.size(); ++m) {
-    int existing = find_material(other.materials[m].name);
-    if (existing < 0) {
-      materials.push_back(other.materials[m]);
-      existing = static_cast<int>(materials.size() - 1);
-    }
-    material_map[m] = static_cast<std::uint32_t>(existing);
+    const auto [it, added] =
+        material_index.emplace(other.materials[m].name, static_cast<std::uint32_t>(materials.size()));
+    if (added) materials.push_back(other.materials[m]);
+    material_map[m] = it->second;
   }
+  std::unordered_map<std::string, std::uint32_t> group_index;
+  for (std::size_t g = group_names.size(); g-- > 0;) group_index[group_names[g]] = static_cast<std::uint32_t>(g);
   std::vector<std::uint32_t> group_map(other.group_names.size());
-  for (std::size_t g = 0; g < other.group_names.size(); ++g)
-    group_map[g] = find_or_add_group(other.group_names[g]);
+  for (std::size_t g = 0; g < other.group_names.size(); ++g) {
+    const auto [it, added] = group_index.emplace(other.group_names[g], static_cast<std::uint32_t>(group_names.size()));
+    if (added) group_names.push_back(other.group_names[g]);
+    group_map[g] = it->second;
+  }
 
   for (std::size_t i = 0; i < other.polygons.size(); ++i) {
     auto poly = other.polygons[i];

@@ -17,7 +17,7 @@ void embree_error(void* /*user*/, RTCError code, const char* message) {
   spdlog::error("Embree error {}: {}", static_cast<int>(code), message ? message : "");
 }
 
-// A ray from `origin` (already shifted to the scene's centre) along `direction`.
+// A ray from `origin` (already in Embree's centred, scaled frame) along `direction`.
 RTCRayHit make_ray_hit(const Vec3d& origin, const Vec3d& direction, float tnear) {
   RTCRayHit rh;
   rh.ray.org_x = static_cast<float>(origin[0]);
@@ -47,10 +47,12 @@ Visibility::Visibility(const SceneMesh& scene) {
   const TriMesh& mesh = scene.mesh();
   const Bounds bounds = scene.bounds();
   centre_ = (bounds.lo + bounds.hi) * 0.5;
-  // Offsets: large against float rounding at the scene's scale, small against any
-  // feature a model of that size has.
-  epsilon_ = 1e-6 * std::max(bounds.diagonal(), 1e-30) + 4 * std::numeric_limits<float>::epsilon() *
-                                                                 std::max(1.0, (bounds.hi - centre_).norm());
+  // Embree sees the scene centred and scaled to a unit diagonal, whatever the model's
+  // units: in micrometres or light years, floats then keep the same relative precision.
+  scale_ = 1.0 / std::max(bounds.diagonal(), 1e-300);
+  // Offsets (world units): large against float rounding at the scene's scale, small
+  // against any feature a model of that size has. Both terms scale with the scene.
+  epsilon_ = 1e-6 * bounds.diagonal() + 4 * std::numeric_limits<float>::epsilon() * (bounds.hi - centre_).norm();
 
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree could not create a device");
@@ -66,7 +68,7 @@ Visibility::Visibility(const SceneMesh& scene) {
                                                                  3 * sizeof(unsigned), mesh.n_faces()));
   check(device_, "allocating geometry");
   for (auto v : mesh.vertices()) {
-    const Vec3d p = mesh.point(v) - centre_;
+    const Vec3d p = (mesh.point(v) - centre_) * scale_;
     for (int c = 0; c < 3; ++c) vertices[3 * v.idx() + c] = static_cast<float>(p[c]);
   }
   face_normals_.resize(mesh.n_faces());
@@ -89,10 +91,10 @@ Visibility::~Visibility() {
 
 bool Visibility::make_segment(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal,
                               RTCRay& ray) const {
-  const Vec3d origin = from + from_normal * epsilon_ - centre_;
-  Vec3d direction = (to + to_normal * epsilon_ - centre_) - origin;
+  const Vec3d origin = (from + from_normal * epsilon_ - centre_) * scale_;
+  Vec3d direction = (to + to_normal * epsilon_ - centre_) * scale_ - origin;
   const double distance = direction.norm();
-  if (distance <= epsilon_) return false;
+  if (distance <= epsilon_ * scale_) return false;
   direction /= distance;
   ray.org_x = static_cast<float>(origin[0]);
   ray.org_y = static_cast<float>(origin[1]);
@@ -171,7 +173,8 @@ std::size_t Visibility::replay(const RTCRay* rays, std::size_t count, int stream
 }
 
 Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal, const Vec3d& direction) const {
-  RTCRayHit rh = make_ray_hit(origin_world + normal * epsilon_ - centre_, direction, static_cast<float>(epsilon_));
+  RTCRayHit rh = make_ray_hit((origin_world + normal * epsilon_ - centre_) * scale_, direction,
+                              static_cast<float>(epsilon_ * scale_));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
@@ -185,7 +188,7 @@ Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal
 namespace dynrad::rad {
 
 Visibility::Intersection Visibility::intersect(const Vec3d& origin_world, const Vec3d& direction) const {
-  RTCRayHit rh = make_ray_hit(origin_world - centre_, direction, 0.0f);
+  RTCRayHit rh = make_ray_hit((origin_world - centre_) * scale_, direction, 0.0f);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
@@ -196,7 +199,7 @@ Visibility::Intersection Visibility::intersect(const Vec3d& origin_world, const 
   out.face = static_cast<int>(rh.hit.primID);
   out.u = rh.hit.u;
   out.v = rh.hit.v;
-  out.distance = rh.ray.tfar;
+  out.distance = rh.ray.tfar / scale_;
   out.front = OpenMesh::dot(face_normals_[rh.hit.primID], direction) < 0;
   return out;
 }

@@ -2,8 +2,9 @@
 //
 // Refinement never moves a surface (midpoints lie on their flat triangles), so the
 // Embree scene is built once from the patch mesh. Coordinates are shifted to the
-// scene's centre before Embree's single-precision conversion, and every ray is kept
-// off the surfaces it starts and ends on by a distance relative to the scene size.
+// scene's centre and scaled to a unit diagonal before Embree's single-precision
+// conversion, and every ray is kept off the surfaces it starts and ends on by a
+// distance relative to the scene size.
 #pragma once
 
 #include "mesh/scene_mesh.h"
@@ -63,7 +64,8 @@ class Visibility {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   Vec3d centre_;
-  double epsilon_ = 0;
+  double scale_ = 1;                 // world to Embree: (p - centre_) * scale_
+  double epsilon_ = 0;               // world units
   std::vector<Vec3d> face_normals_;  // by Embree primitive id
   mutable std::atomic<std::uint64_t> rays_{0};
   std::vector<RTCRay>* record_ = nullptr;

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs exactly the Debian 12 packages that dynrad's build, tests and CI need.
+# clang, libclang-rt-dev (libFuzzer and sanitizer runtimes) and llvm (llvm-symbolizer,
+# for readable sanitizer stacks) are for scripts/fuzz.sh and scripts/test-sanitizers.sh.
 # Safe to run repeatedly; needs root (or sudo).
 set -euo pipefail
 
@@ -11,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
   blender
+  clang libclang-rt-dev llvm
 )
 
 missing=()

@@ -46,7 +46,8 @@ Refusal expect_refused(const TempDir& dir, const std::string& input, const std::
 
 TEST(BadInput, TruncatedBinaryPly) {
   TempDir dir;
-  const auto made = test::run_dynrad("clean '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("full.ply") + "'");
+  const auto made =
+      test::run_dynrad("clean '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("full.ply") + "'");
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const std::string full = test::read_text(dir.path("full.ply"));
   const std::string input = dir.write("cut.ply", full.substr(0, full.size() / 2));
@@ -65,10 +66,125 @@ TEST(BadInput, TruncatedObjNamesTheLine) {
 TEST(BadInput, ImpossibleElementCountsFailFast) {
   TempDir dir;
   expect_refused(dir, dir.write("huge.off", "OFF\n4000000000 1 0\n0 0 0\n"), {"huge.off", "declares 4000000000"});
-  expect_refused(dir, dir.write("huge.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 900000000\nproperty float x\n"
-                                "property float y\nproperty float z\nend_header\n0 0 0\n"),
+  expect_refused(dir,
+                 dir.write("huge.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 900000000\nproperty float x\n"
+                           "property float y\nproperty float z\nend_header\n0 0 0\n"),
                  {"huge.ply", "header is damaged"});
+}
+
+// Found by fuzzing (scripts/fuzz.sh): OpenMesh's PLY reader wrote through a property
+// that no element precedes (a segfault), and read negative OFF counts as four billion
+// (a hang). The headers are now checked first.
+TEST(BadInput, DamagedPlyHeadersAreRefusedNamingTheLine) {
+  TempDir dir;
+  const std::string tail = "property float y\nproperty float z\nelement face 0\nend_header\n0 0 0\n";
+  // The fuzzer's input: "element" damaged to "elemeplx", so the properties had no element.
+  expect_refused(
+      dir, dir.write("k.ply", "ply\nformat binary_little_endian 1.0\nelemeplx\nertex 4\nproperty float x\n" + tail),
+      {"k.ply:3", "unknown keyword 'elemeplx'"});
+  expect_refused(dir, dir.write("p.ply", "ply\nformat ascii 1.0\ncomment no element yet\nproperty float x\n" + tail),
+                 {"p.ply:4", "before any element"});
+  expect_refused(dir, dir.write("n.ply", "ply\nformat ascii 1.0\nelement vertex -1\nproperty float x\n" + tail),
+                 {"n.ply:3", "whole number"});
+  // An element dynrad does not use still has to fit in the file.
+  expect_refused(dir,
+                 dir.write("x.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                           "property float y\nproperty float z\nelement edge 3000000000\n"
+                           "property int vertex1\nelement face 0\nend_header\n0 0 0\n"),
+                 {"x.ply", "3000000000 edge elements", "header is damaged"});
+  expect_refused(dir, dir.write("t.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\n" + tail),
+                 {"t.ply:4", "unknown type"});
+  expect_refused(dir, dir.write("e.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"),
+                 {"e.ply", "no end_header"});
+}
+
+TEST(BadInput, NegativeOrHugeOffCountsFailFast) {
+  TempDir dir;
+  // The fuzzer's input, shortened: a face count of -2 made OpenMesh loop 2^32 times.
+  expect_refused(dir, dir.write("neg.off", "COFF\n4 -2 0\n0 0 0 255 0 0 255\n1 0 0 0 0 255 255\n"),
+                 {"neg.off:2", "whole numbers", "'4 -2 0'"});
+  // Would overflow 64 bits when multiplied by the bytes a face needs.
+  expect_refused(dir, dir.write("big.off", "OFF\n3 18446744073709551615 0\n0 0 0\n1 0 0\n0 1 0\n"),
+                 {"big.off", "whole numbers"});
+  expect_refused(dir, dir.write("wide.off", "OFF\n3 999999999999999999 0\n0 0 0\n1 0 0\n0 1 0\n"),
+                 {"wide.off", "declares 3 vertices and 999999999999999999 faces"});
+}
+
+// Binary OFF as OpenMesh writes it (little-endian counts after "OFF BINARY"). It was
+// read from memory as if it were text and always refused; damaged counts made
+// OpenMesh loop for minutes.
+TEST(BadInput, BinaryOffIsReadAndItsCountsChecked) {
+  TempDir dir;
+  auto binary_off = [](std::int32_t vertices, std::int32_t faces) {
+    std::string text = "OFF BINARY\n";
+    auto put = [&](const auto& value) { text.append(reinterpret_cast<const char*>(&value), sizeof value); };
+    for (std::int32_t count : {vertices, faces, 0}) put(count);
+    for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(x);
+    for (std::int32_t i : {3, 0, 1, 2}) put(i);
+    return text;
+  };
+  const auto ok = test::run_dynrad("info --json '" + dir.write("ok.off", binary_off(3, 1)) + "'");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_EQ(nlohmann::json::parse(ok.output)["faces"].get<int>(), 1);
+  expect_refused(dir, dir.write("many.off", binary_off(2000000000, 1)), {"many.off", "declares 2000000000 vertices"});
+  expect_refused(dir, dir.write("neg.off", binary_off(3, -5)), {"neg.off", "-5 faces"});
+}
+
+// Found by fuzzing: OpenMesh believes a face's corner count and appends that many
+// indices whatever the line or file holds (2 GB and counting); a PLY "format" line with
+// a damaged version made its header reader loop for ever.
+TEST(BadInput, CornerCountsBeyondTheDataAreRefused) {
+  TempDir dir;
+  expect_refused(dir, dir.write("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2222222222 0 1 2\n"),
+                 {"long.off:6", "declares 2222222222 corners but lists 3"});
+  expect_refused(dir, dir.write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0 1 2\n"),
+                 {"word.off:6", "number of corners, not '0.5'"});
+  const std::string header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list int int vertex_indices\nend_header\n";
+  expect_refused(dir, dir.write("list.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0\n1 0 0\n0 1 0\n9999 0 1 2\n"),
+                 {"list.ply:13", "declares 9999 entries"});
+  std::string binary = "ply\nformat binary_little_endian 1.0\n" + header;
+  for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) binary.append(reinterpret_cast<const char*>(&x), 4);
+  for (std::int32_t i : {-1, 0, 1, 2}) binary.append(reinterpret_cast<const char*>(&i), 4);
+  expect_refused(dir, dir.write("list_bin.ply", binary), {"list_bin.ply", "face 0", "declares 4294967295 entries"});
+  expect_refused(dir, dir.write("version.ply", "ply\nformat binary_little_endian ndices\nend_header\n"),
+                 {"version.ply:2", "unknown version 'ndices'"});
+  expect_refused(dir, dir.write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 3 4\n"),
+                 {"extra.ply:3", "unexpected '4'"});
+}
+
+// Found by fuzzing: OpenMesh takes the whole first line as the keyword and the next
+// three words as counts, wherever they are; "COFF\x12 8 2 0" then had it read counts
+// from past the end and allocate 4 GB. Keyword and counts now have a line each.
+TEST(BadInput, OffKeywordAndCountsMustHaveALineEach) {
+  TempDir dir;
+  expect_refused(dir,
+                 dir.write("k.off",
+                           "COFF\x12"
+                           "8 2 0\n#c\n"),
+                 {"k.off:1", "only the keyword"});
+  expect_refused(dir, dir.write("one.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                 {"one.off:1", "Put the counts on the next line"});
+  expect_refused(dir, dir.write("two.off", "OFF\n# counts\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                 {"two.off:3", "three whole numbers"});
+  const auto ok = test::run_dynrad("info '" +
+                                   dir.write("ok.off",
+                                             "NOFF\n\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n"
+                                             "0 1 0 0 0 1\n3 0 1 2\n") +
+                                   "'");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+// Found by fuzzing: a number beyond double's range made the JSON library throw an
+// exception that was not a parse error, which ended dynrad with "internal error".
+TEST(BadInput, SceneNumberBeyondDoubleRangeIsAnInputError) {
+  TempDir dir;
+  dir.write("t.obj", kTriangleObj);
+  expect_refused(dir, dir.write("big.json", R"({"meshes": [{"file": "t.obj", "transform": {"scale": 1e3083}}]})"),
+                 {"big.json", "invalid JSON", "1e3083"});
 }
 
 TEST(BadInput, MislabelledFiles) {
@@ -82,7 +198,8 @@ TEST(BadInput, NanAndInfinityNameTheLine) {
   TempDir dir;
   expect_refused(dir, dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), {"nan.obj:2", "not finite"});
   expect_refused(dir, dir.write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"), {"inf.obj:3"});
-  const auto off = expect_refused(dir, dir.write("inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"), {"inf.off"});
+  const auto off =
+      expect_refused(dir, dir.write("inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"), {"inf.off"});
   EXPECT_NE(off.output.find("inf.off:4"), std::string::npos) << off.output;
 }
 

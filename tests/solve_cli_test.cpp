@@ -90,10 +90,9 @@ TEST(SolveCommand, DynamicNeedsFarFewerTransfersThanAdaptive) {
 TEST(SolveCommand, InterruptWritesTheCurrentSolution) {
   test::TempDir dir;
   const std::string out = dir.path("partial.ply");
-  const std::string command = std::string("( '") + DYNRAD_EXE + "' solve '" + test::sample("globillum_room_obstructed.obj") +
-                              "' -o '" + out + "' --patch-size 0.15 --converge 1e-9 --time-limit 60 & pid=$!; "
-                              "sleep 2; kill -INT $pid; wait $pid; echo exit=$? )";
-  const auto r = test::run_shell(command);
+  const auto r = test::run_dynrad_and_signal("solve '" + test::sample("globillum_room_obstructed.obj") + "' -o '" +
+                                                 out + "' --patch-size 0.15 --converge 1e-9 --time-limit 600",
+                                             2.0, "INT");
   EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("interrupted"), std::string::npos) << r.output;
   const auto green = read_green(out);

@@ -49,6 +49,18 @@ CommandResult run_dynrad(const std::string& arguments) {
   return run_shell(std::string("'") + DYNRAD_EXE + "' " + arguments);
 }
 
+CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name) {
+  TempDir dir;
+  const std::string log = dir.path("log.txt");
+  // Up to 10 minutes for loading (sanitizer builds on a busy machine are slow).
+  return run_shell("( '" + std::string(DYNRAD_EXE) + "' " + arguments + " > '" + log + "' 2>&1 & pid=$!; " +
+                   "for i in $(seq 3000); do grep -q ' patches' '" + log +
+                   "' && break; kill -0 $pid 2>/dev/null || break; "
+                   "sleep 0.2; done; sleep " +
+                   std::to_string(seconds) + "; kill -" + signal_name + " $pid; wait $pid; " + "status=$?; cat '" +
+                   log + "'; echo exit=$status )");
+}
+
 std::string sample(const std::string& name) { return std::string(DYNRAD_SAMPLES_DIR) + "/" + name; }
 
 std::string read_text(const std::string& path) {
@@ -92,7 +104,10 @@ std::size_t count_t_vertices(const SceneMesh& scene, double relative_tolerance) 
   const double cell = std::max(mean_edge, 1e-12 * bounds.diagonal());
   auto cell_of = [&](double x, int axis) { return static_cast<long>(std::floor((x - bounds.lo[axis]) / cell)); };
   std::unordered_map<long long, std::vector<VertexHandle>> grid;
-  auto key = [](long i, long j, long k) { return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^ (static_cast<long long>(k) * 83492791); };
+  auto key = [](long i, long j, long k) {
+    return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^
+           (static_cast<long long>(k) * 83492791);
+  };
   for (auto v : mesh.vertices()) {
     const Vec3d p = mesh.point(v);
     grid[key(cell_of(p[0], 0), cell_of(p[1], 1), cell_of(p[2], 2))].push_back(v);

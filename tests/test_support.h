@@ -31,6 +31,13 @@ struct CommandResult {
 CommandResult run_dynrad(const std::string& arguments);
 // Runs any shell command line.
 CommandResult run_shell(const std::string& command);
+// Starts `dynrad ARGUMENTS` (a solve) in the background, waits until it has loaded the
+// model and started solving (its log says how many patches), lets it solve for
+// `seconds`, sends `signal_name` (INT, TERM, KILL) and waits for it. The output ends
+// with "exit=N". Waiting for the log rather than a fixed time keeps this right on slow
+// (sanitizer) builds: a SIGINT that arrives while a background process still ignores
+// it would be lost.
+CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name);
 
 std::string sample(const std::string& name);
 std::string read_text(const std::string& path);

@@ -1,0 +1,151 @@
+// libFuzzer target for one import path (DYNRAD_FUZZ_FORMAT: obj, ply, off, stl or
+// scene). The input bytes become a file of that format, which goes the whole way a
+// user's file goes: read, cleanup, scene mesh, patches, then a short dynamic solve.
+//
+// InputError is the expected answer to bad input and is caught here. Anything else is
+// a bug the fuzzer reports: another exception escaping, a crash, a sanitizer finding,
+// a NaN in the solution or an energy balance that does not hold.
+//
+// Inputs come from memory but the readers take paths, so each input is written to a
+// scratch directory under $TMPDIR first:
+//   obj    the input up to a line "~MTL~" is model.obj, the rest (if any) model.mtl;
+//   scene  the input is scene.json, next to fixed mesh files it may refer to
+//          (room.obj + room.mtl, panel.off, box.ply, tri.stl; see write_scene_meshes).
+#include "mesh/error.h"
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/solver.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#ifndef DYNRAD_FUZZ_FORMAT
+#error "DYNRAD_FUZZ_FORMAT must name the format: obj, ply, off, stl or scene"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr std::string_view kFormat = DYNRAD_FUZZ_FORMAT;
+constexpr std::string_view kMtlMarker = "\n~MTL~\n";
+
+void write_file(const fs::path& path, std::string_view bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) {
+    std::fprintf(stderr, "fuzz: cannot write %s\n", path.c_str());
+    std::abort();
+  }
+}
+
+// Small, valid meshes a fuzzed scene file can refer to by name.
+void write_scene_meshes(const fs::path& dir) {
+  write_file(dir / "room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl light\nKd 0.5 0.5 0.5\nKe 10 10 10\n");
+  write_file(dir / "room.obj",
+             "mtllib room.mtl\n"
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+             "g floor\nusemtl wall\nf 1 2 3 4\n"
+             "g walls\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n"
+             "g ceiling\nusemtl light\nf 5 8 7 6\n");
+  write_file(dir / "panel.off", "OFF\n# a unit square facing +z\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  write_file(dir / "box.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 2\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+             "property uchar blue\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 200 100 50\n3 0 2 3 10 20 30\n");
+  write_file(dir / "tri.stl",
+             "solid tri\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+             "endfacet\nendsolid tri\n");
+}
+
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = (fs::path(tmp && *tmp ? tmp : "/tmp") / "dynrad-fuzz-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) {
+      std::perror("fuzz: mkdtemp");
+      std::abort();
+    }
+    dir = pattern;
+    if (kFormat == "scene") write_scene_meshes(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+// The input as the file the readers will open.
+std::string stage_input(const Scratch& scratch, std::string_view bytes) {
+  if (kFormat == "obj") {
+    const std::size_t marker = bytes.find(kMtlMarker);
+    const fs::path mtl = scratch.dir / "model.mtl";
+    if (marker == std::string_view::npos) {
+      std::error_code ec;
+      fs::remove(mtl, ec);  // an `mtllib` line then meets a missing library
+    } else {
+      write_file(mtl, bytes.substr(marker + kMtlMarker.size()));
+      bytes = bytes.substr(0, marker + 1);
+    }
+    write_file(scratch.dir / "model.obj", bytes);
+    return (scratch.dir / "model.obj").string();
+  }
+  const std::string name = kFormat == "scene" ? "scene.json" : "model." + std::string(kFormat);
+  write_file(scratch.dir / name, bytes);
+  return (scratch.dir / name).string();
+}
+
+[[noreturn]] void bug(const char* what) {
+  std::fprintf(stderr, "fuzz: %s\n", what);
+  std::abort();
+}
+
+void load_and_solve(const std::string& path) {
+  using namespace dynrad;
+  LoadedScene scene = load_scene(path);
+  SceneMesh& mesh = *scene.mesh;
+  if (!(mesh.emitting_area() > 0)) return;  // the command line refuses this (exit 2)
+  // Coarse patches and a few shots: the point is every code path, not accuracy.
+  const double patch_size = 4 * default_patch_size(mesh);
+  make_patches(mesh, patch_size);
+  RefinementOptions refinement;
+  refinement.min_area = 1e-6 * patch_size * patch_size;
+  ElementHierarchy hierarchy(mesh, refinement);
+  rad::SolveOptions options;
+  options.max_iterations = 3;
+  options.threads = 1;
+  options.escape_rays = 64;
+  rad::RefineSettings refine;
+  refine.method = rad::Method::dynamic;
+  refine.max_level = 1;
+  rad::Solver solver(mesh, hierarchy, options, refine);
+  solver.run();
+  for (const Rgb& b : solver.output().radiosity)
+    if (!b.is_finite()) bug("a vertex radiosity is not finite");
+  const rad::EnergyBalance& e = solver.energy();
+  for (int c = 0; c < 3; ++c) {
+    const double accounted = e.absorbed[c] + e.escaped[c] + e.unshot[c];
+    if (!std::isfinite(accounted) || std::abs(accounted - e.emitted[c]) > 1e-6 * e.emitted[c])
+      bug("energy balance does not hold: emitted != absorbed + escaped + unshot");
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const Scratch scratch;
+  const std::string path = stage_input(scratch, std::string_view(reinterpret_cast<const char*>(data), size));
+  try {
+    load_and_solve(path);
+  } catch (const dynrad::InputError&) {
+    // Refused with a message: the right answer to a bad file.
+  }
+  return 0;
+}

@@ -1,0 +1,108 @@
+// No lost work (README, "Exit codes"): an output is only ever replaced by a complete
+// one. A run that fails, before or after loading, or that is killed, leaves every
+// existing output (mesh, report, preview) as it was, and no temporary file behind.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace dynrad {
+namespace {
+
+using test::TempDir;
+
+const char* kPrecious = "precious: written by an earlier run";
+
+struct Outputs {
+  std::string mesh, report, preview;
+  std::string arguments() const {
+    return " -o '" + mesh + "' --report '" + report + "' --preview '" + preview + "' --preview-width 64";
+  }
+};
+
+Outputs existing_outputs(const TempDir& dir) {
+  return {dir.write("out.ply", kPrecious), dir.write("out.json", kPrecious), dir.write("out.png", kPrecious)};
+}
+
+void expect_untouched(const TempDir& dir, const Outputs& out) {
+  for (const auto& path : {out.mesh, out.report, out.preview}) EXPECT_EQ(test::read_text(path), kPrecious) << path;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path("")))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+}
+
+TEST(NoLostWork, FailedSolvesLeaveEveryExistingOutputUntouched) {
+  TempDir dir;
+  const Outputs out = existing_outputs(dir);
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  // Each fails at a different stage: reading, cleanup, after loading (no light), options.
+  const std::vector<std::pair<std::string, std::string>> failures = {
+      {dir.write("broken.obj", "v 0 0 0\nf 1 2 3\n"), "broken.obj:2"},
+      {dir.write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate"},
+      {dir.write("dark.obj", triangle), "no face emits light"},
+      {dir.path("missing.obj"), "not found"},
+  };
+  for (const auto& [input, message] : failures) {
+    const auto r = test::run_dynrad("solve '" + input + "'" + out.arguments());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    expect_untouched(dir, out);
+  }
+  const auto bad_option =
+      test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "'" + out.arguments() + " --method nope");
+  EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
+  expect_untouched(dir, out);
+}
+
+// A solve killed outright (no chance to clean up) has written nothing yet: outputs are
+// only written, to temporary files renamed at the end, once the solve is over.
+TEST(NoLostWork, KilledSolveLeavesExistingOutputsUntouched) {
+  TempDir dir;
+  const Outputs out = existing_outputs(dir);
+  const auto r =
+      test::run_dynrad_and_signal("solve '" + test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
+                                      " --patch-size 0.15 --converge 1e-9 --time-limit 600",
+                                  1.0, "KILL");
+  EXPECT_NE(r.output.find("exit=137"), std::string::npos) << r.output;  // 128 + SIGKILL: it was still running
+  expect_untouched(dir, out);
+}
+
+// Ctrl-C is not a failure: the solution so far is written, every output complete.
+TEST(NoLostWork, InterruptedSolveReplacesEveryOutputWithACompleteOne) {
+  TempDir dir;
+  const Outputs out = existing_outputs(dir);
+  const auto r =
+      test::run_dynrad_and_signal("solve '" + test::sample("globillum_room_obstructed.obj") + "'" + out.arguments() +
+                                      " --patch-size 0.15 --converge 1e-9 --time-limit 600",
+                                  2.0, "INT");
+  EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
+  const auto report = nlohmann::json::parse(test::read_text(out.report));
+  EXPECT_EQ(report["stopped_by"], "interrupted");
+  EXPECT_GT(report["iterations"].get<int>(), 0);
+  const std::string mesh = test::read_text(out.mesh);
+  ASSERT_EQ(mesh.rfind("ply\n", 0), 0u);
+  // The binary body is exactly what the header declares: vertices of 3 + 3 + 1 floats
+  // and 3 bytes, faces of a count byte and 3 ints.
+  const auto count = [&](const std::string& element) {
+    const auto at = mesh.find("element " + element + " ");
+    return at == std::string::npos ? -1L : std::atol(mesh.c_str() + at + 9 + element.size());
+  };
+  const std::size_t header = mesh.find("end_header\n") + 11;
+  ASSERT_GT(count("vertex"), 0);
+  ASSERT_GT(count("face"), 0);
+  EXPECT_EQ(mesh.size() - header, std::size_t(count("vertex") * (7 * 4 + 3) + count("face") * (1 + 3 * 4)));
+  EXPECT_EQ(test::read_text(out.preview).substr(1, 3), "PNG");
+}
+
+TEST(NoLostWork, FailedDiffLeavesTheExistingOutputUntouched) {
+  TempDir dir;
+  const std::string existing = dir.write("d.ply", kPrecious);
+  const auto r = test::run_dynrad("diff '" + test::sample("scene_room/room.off") + "' '" + dir.path("absent.ply") +
+                                  "' -o '" + existing + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(test::read_text(existing), kPrecious);
+}
+
+}  // namespace
+}  // namespace dynrad
