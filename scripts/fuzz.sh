@@ -4,7 +4,7 @@
 # a hang, a leak or a sanitizer error; the input that did it is kept in
 # build-fuzz/artifacts/ (turn it into a regression test, then fix the bug).
 #
-#   scripts/fuzz.sh              # every target, FUZZ_SECONDS (default 22) each
+#   scripts/fuzz.sh              # every target, FUZZ_SECONDS (default 20) each
 #   scripts/fuzz.sh obj scene    # only these targets
 #   FUZZ_SECONDS=600 scripts/fuzz.sh ply
 #
@@ -13,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-seconds=${FUZZ_SECONDS:-22}
+seconds=${FUZZ_SECONDS:-20}
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene)
 
