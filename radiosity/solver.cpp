@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <map>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace dynrad::rad {
 

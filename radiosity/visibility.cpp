@@ -113,14 +113,7 @@ bool Visibility::make_segment(const Vec3d& from, const Vec3d& from_normal, const
 
 bool Visibility::occluded(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to,
                           const Vec3d& to_normal) const {
-  RTCRay ray;
-  if (!make_segment(from, from_normal, to, to_normal, ray)) return false;
-  if (record_) record_->push_back(ray);
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  rtcOccluded1(scene_, &context, &ray);
-  rays_.fetch_add(1, std::memory_order_relaxed);
-  return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+  return visible_count(from, from_normal, &to, 1, to_normal) == 0;
 }
 
 int Visibility::visible_count(const Vec3d& from, const Vec3d& from_normal, const Vec3d* targets, int count,
