@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -514,18 +515,54 @@ void check_ply_body(const std::string& path, const std::string& text) {
   }
 }
 
-// ASCII OFF: each face line starts with its corner count, which OpenMesh believes (and
-// appends that many indices, whatever the line holds, until memory runs out). Each of
-// the `faces` lines after the `vertices` vertex lines must hold as many indices.
-void check_ascii_off_faces(const std::string& path, const std::string& parsed,
-                           const std::vector<std::uint32_t>& data_lines, std::uint64_t vertices, std::uint64_t faces) {
+// ASCII OFF as OpenMesh reads it: each vertex takes three coordinates (six with 'N')
+// from the token stream, wherever the line breaks fall, then the rest of its line; each
+// face takes its corner count and that many indices from the token stream, and the
+// rest of its line only when the keyword has 'C'. So a short vertex line shifts
+// everything after it, a corner count is believed (OpenMesh appends that many indices
+// until memory runs out), and a colour after a face in a plain "OFF" file is read as
+// the next face's corner count. Here every vertex and face line is checked to hold
+// what it declares, and without 'C' whatever follows a face's indices is blanked out
+// of `parsed` (face colours are not read), so OpenMesh reads what the lines say.
+void normalise_ascii_off(const std::string& path, std::string& parsed, const std::vector<std::uint32_t>& data_lines,
+                         std::uint64_t vertices, std::uint64_t faces) {
+  std::string keyword;
+  std::istringstream(parsed.substr(0, parsed.find('\n'))) >> keyword;
+  const auto prefix = keyword.substr(0, keyword.size() >= 3 ? keyword.size() - 3 : 0);
+  const bool normals = prefix.find('N') != std::string::npos;
+  const bool face_rest_read = prefix.find('C') != std::string::npos;
+  const std::uint64_t coordinates = normals ? 6 : 3;
+
   std::vector<std::size_t> line_start = {0};
   for (std::size_t i = 0; i < parsed.size(); ++i)
     if (parsed[i] == '\n') line_start.push_back(i + 1);
+  auto line_range = [&](std::size_t line_no) {
+    const std::size_t begin = line_start[line_no - 1];
+    const std::size_t end = line_no < line_start.size() ? line_start[line_no] - 1 : parsed.size();
+    return std::make_pair(begin, end);
+  };
+  // Token k of a line: where it ends, or npos when the line has fewer.
+  auto end_of_token = [&](std::size_t begin, std::size_t end, std::uint64_t k) {
+    std::size_t i = begin;
+    for (std::uint64_t t = 0; t <= k; ++t) {
+      while (i < end && std::isspace(static_cast<unsigned char>(parsed[i]))) ++i;
+      if (i == end) return std::string::npos;
+      while (i < end && !std::isspace(static_cast<unsigned char>(parsed[i]))) ++i;
+    }
+    return i;
+  };
+
+  for (std::uint64_t v = 0; v < vertices && v < data_lines.size(); ++v) {
+    const auto [begin, end] = line_range(data_lines[v]);
+    if (end_of_token(begin, end, coordinates - 1) == std::string::npos)
+      throw InputError(path, data_lines[v],
+                       "vertex " + std::to_string(v) + " must hold " + std::to_string(coordinates) +
+                           " numbers on its line (x y z" + (normals ? " and a normal" : "") +
+                           "). The file is damaged.");
+  }
   for (std::uint64_t f = 0; f < faces && vertices + f < data_lines.size(); ++f) {
     const std::size_t line_no = data_lines[vertices + f];
-    const std::size_t begin = line_start[line_no - 1];
-    const std::size_t end = line_no < line_start.size() ? line_start[line_no] : parsed.size();
+    const auto [begin, end] = line_range(line_no);
     std::istringstream words(parsed.substr(begin, end - begin));
     std::string count;
     words >> count;
@@ -533,12 +570,16 @@ void check_ascii_off_faces(const std::string& path, const std::string& parsed,
     if (!parse_count(count, n))
       throw InputError(path, line_no,
                        "face " + std::to_string(f) + " must start with its number of corners, not '" + count + "'.");
-    std::uint64_t indices = 0;
-    for (std::string t; indices < n && words >> t;) ++indices;
-    if (indices < n)
+    const std::size_t last = n < end - begin ? end_of_token(begin, end, n) : std::string::npos;
+    if (last == std::string::npos) {
+      std::uint64_t indices = 0;
+      for (std::string t; words >> t;) ++indices;
       throw InputError(path, line_no,
                        "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
                            std::to_string(indices) + ". The file is damaged.");
+    }
+    if (!face_rest_read) std::fill(parsed.begin() + static_cast<std::ptrdiff_t>(last),
+                                   parsed.begin() + static_cast<std::ptrdiff_t>(end), ' ');
   }
 }
 
@@ -566,10 +607,10 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
   if (ext == ".ply") check_ply_body(path, text);
   // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
   // (keeping line numbers) and parse from memory.
-  const std::string parsed = ext == ".off" ? strip_comments(text) : text;
+  std::string parsed = ext == ".off" ? strip_comments(text) : text;
   const bool ascii = is_ascii(text, ext) && ext != ".stl";
   const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
-  if (ascii && ext == ".off") check_ascii_off_faces(path, parsed, data_lines, declared.vertices, declared.faces);
+  if (ascii && ext == ".off") normalise_ascii_off(path, parsed, data_lines, declared.vertices, declared.faces);
 
   SoupImporter importer;
   importer.capacity = text.size();  // no format stores an element in less than a byte

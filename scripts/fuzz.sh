@@ -7,6 +7,7 @@
 #   scripts/fuzz.sh              # every target, FUZZ_SECONDS (default 20) each
 #   scripts/fuzz.sh obj scene    # only these targets
 #   FUZZ_SECONDS=600 scripts/fuzz.sh ply
+#   FUZZ_SEED=1 scripts/fuzz.sh  # the same mutations every run (CI), up to the time limit
 #
 # The corpus in build-fuzz/corpus/<target> is seeded from tests/fuzz/seeds and samples/
 # on every run and keeps what the fuzzer finds between local runs.
@@ -14,6 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 seconds=${FUZZ_SECONDS:-20}
+seed_value=${FUZZ_SEED:-0}  # 0: libFuzzer picks one
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene)
 
@@ -63,7 +65,7 @@ for target in "${targets[@]}"; do
   [ -f "tests/fuzz/$target.dict" ] && dict=(-dict="tests/fuzz/$target.dict")
   echo "fuzz: $target for ${seconds}s"
   if ! build-fuzz/tests/fuzz/fuzz_"$target" build-fuzz/corpus/"$target" "${dict[@]}" \
-      -max_total_time="$seconds" -timeout=15 -rss_limit_mb=2560 -max_len=16384 \
+      -max_total_time="$seconds" -seed="$seed_value" -timeout=15 -rss_limit_mb=2560 -max_len=16384 \
       -artifact_prefix="build-fuzz/artifacts/$target-" -print_final_stats=1 \
       > "build-fuzz/fuzz_$target.log" 2>&1; then
     failed+=("$target")

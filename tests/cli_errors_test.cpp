@@ -156,6 +156,18 @@ TEST(BadInput, CornerCountsBeyondTheDataAreRefused) {
                  {"extra.ply:3", "unexpected '4'"});
 }
 
+// Found by fuzzing: OpenMesh reads an OFF vertex's coordinates from the token stream,
+// so a vertex line with two numbers took its third from the next line and shifted every
+// later line; a face then declared billions of corners (a 3 GB allocation). Each vertex
+// line must now hold its coordinates.
+TEST(BadInput, ShortOffVertexLinesAreRefusedNamingTheLine) {
+  TempDir dir;
+  expect_refused(dir, dir.write("short.off", "COFF\n4 2 0\n0 0 5 255 0 0 255\n1 0 \n4 2 0\n0 0 5\n3 0 1 2\n3 0 2 3\n"),
+                 {"short.off:4", "vertex 1 must hold 3 numbers"});
+  expect_refused(dir, dir.write("normals.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n"),
+                 {"normals.off:4", "vertex 1 must hold 6 numbers"});
+}
+
 // Found by fuzzing: OpenMesh takes the whole first line as the keyword and the next
 // three words as counts, wherever they are; "COFF\x12 8 2 0" then had it read counts
 // from past the end and allocate 4 GB. Keyword and counts now have a line each.

@@ -193,5 +193,18 @@ TEST(ImportValidation, UndefinedMaterialIsRefusedUnlessASceneDefinesIt) {
   EXPECT_TRUE(soup.materials[soup.material[0]].emits());
 }
 
+// A plain "OFF" file may end a face line with a colour. OpenMesh reads the rest of a
+// face line only when the keyword has 'C', so the colour's first number became the next
+// face's corner count; the importer now blanks what follows the indices.
+TEST(ImportOff, FaceColoursInPlainOffDoNotShiftTheNextFace) {
+  TempDir dir;
+  const PolygonSoup soup = read_model(dir.write(
+      "fc.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 255 0 0\n3 0 2 3 0.2 0.4 0.6 1\n"));
+  ASSERT_EQ(soup.polygons.size(), 2u);
+  EXPECT_EQ(soup.polygons[1].size(), 3u);
+  EXPECT_NEAR(test::polygon_area(soup), 1.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace dynrad
+
