@@ -20,6 +20,11 @@ struct SolveOptions {
   std::uint64_t seed = 1;          // all sampling is seeded: same input, same answer
   int threads = 0;                 // 0: all cores
   double crease_angle = 30;        // degrees; see mesh/vertex_split.h
+  // Output only: add Cohen et al.'s (1988) ambient estimate of the light not yet shot,
+  // reflectance x ambient, to every vertex. It does not touch the solve or
+  // its energy balance; it makes an early stop (a time limit, Ctrl-C) look like the
+  // converged picture rather than a darker one. It vanishes as the solve converges.
+  bool ambient_display = false;
   // Called at every shot boundary; returning true stops the solve there (signals).
   std::function<bool()> should_stop;
   // Called after every shot.

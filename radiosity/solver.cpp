@@ -460,7 +460,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uin
   report_.energy.unshot = unshot;
 }
 
-Solver::Output Solver::output() {
+Solver::Output Solver::output(bool ambient_display) {
   flush_all();
   Output out;
   out.split = split_vertices(scene_, options_.crease_angle);
@@ -468,14 +468,16 @@ Solver::Output Solver::output() {
   out.emitter.assign(out.split.size(), 0);
   std::vector<int> count(out.split.size(), 0);
   const TriMesh& mesh = scene_.mesh();
+  const Rgb ambient_now = ambient_display ? ambient() : Rgb();
   for (auto f : mesh.faces()) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
+    const Rgb extra = patches_[el.patch].reflectance * ambient_now;
     int k = 0;
     for (auto v : mesh.fv_range(f)) {
       const auto node = out.split.corner[3 * f.idx() + k++];
       for (int j = 0; j < 3; ++j)
-        if (el.corners[j] == v) out.radiosity[node] += value_[e][j];
+        if (el.corners[j] == v) out.radiosity[node] += value_[e][j] + extra;
       ++count[node];
       out.emitter[node] = scene_.material(f).emits();
     }

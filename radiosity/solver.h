@@ -66,7 +66,8 @@ class Solver {
     std::vector<Rgb> radiosity;
     std::vector<char> emitter;  // the vertex belongs to an emitting surface
   };
-  Output output();
+  Output output() { return output(options_.ambient_display); }
+  Output output(bool ambient_display);  // with or without the ambient term, whatever the options
 
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;

@@ -116,6 +116,33 @@ TEST_P(Physics, FurnaceGivesEOverOneMinusRho) {
   }
 }
 
+// The ambient display term (Cohen et al. 1988) on an early stop: in a furnace of one
+// reflectance the ambient estimate of the unshot light is exact in the mean, so after
+// a few shots the displayed mean is within a few percent of E / (1 - rho), far closer
+// than the shot-so-far values; the solve itself and its energy balance do not change.
+TEST(AmbientDisplay, EarlyStopInTheFurnaceShowsTheConvergedMean) {
+  PolygonSoup soup = empty_soup({Material{"glow", Rgb(0.5), Rgb(1.0), "test", true}});
+  add_room(soup, {0, 0, 0}, {2, 1, 1}, {0, 0, 0, 0, 0, 0});
+  double means[2] = {0, 0};
+  Rgb unshot[2];
+  for (int ambient = 0; ambient < 2; ++ambient) {
+    SolveOptions options;
+    options.max_iterations = 20;
+    options.converge = 0;
+    options.ambient_display = ambient == 1;
+    Solved s = prepare(soup, 0.5, options, Config{Method::progressive, {}, "progressive"});
+    const SolveReport report = s.solver->run();
+    ASSERT_EQ(report.iterations, 20u);
+    ASSERT_GT(report.unshot_fraction, 0.2);  // far from converged
+    const auto out = s.solver->output();
+    for (const Rgb& b : out.radiosity) means[ambient] += b.g / out.radiosity.size();
+    unshot[ambient] = report.energy.unshot;
+  }
+  EXPECT_LT(means[0], 0.9 * 2.0);               // without: clearly too dark
+  EXPECT_NEAR(means[1], 2.0, 0.03 * 2.0);       // with: the converged mean
+  EXPECT_EQ(unshot[0].g, unshot[1].g);          // the solve is the same
+}
+
 // The defaults in the furnace, measured so that a change shows: the bias of mixing
 // pushed-down and shot transfers (see above) stays under 20% at every vertex.
 TEST(Physics, DynamicDefaultsInTheFurnaceStayWithinTheirKnownBias) {

@@ -201,6 +201,7 @@ int run_solve(SolveCliOptions& options) {
     j["refinement_stopped"] = report.refinement_stopped;
     j["refinement_stopped_at"] = report.refinement_stopped_at;
     j["peak_resident_memory"] = report.peak_resident_memory;
+    j["ambient_display"] = options.solve.ambient_display;
     j["exposure"] = exposure;
     j["patch_size"] = patch_size;
     j["energy"] = {{"emitted", rgb_json(e.emitted)},
@@ -288,6 +289,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--crease-angle", options->solve.crease_angle, "Split vertices where faces meet at more than this")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
+  command->add_flag("--ambient", options->solve.ambient_display,
+                   "Add the ambient estimate of light not yet shot to the written values (Cohen et al. 1988); "
+                   "useful with --time-limit");
   command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
   command->add_option("--preview", options->preview, "Also render a PNG picture of the result");
   command->add_option("--preview-width", options->preview_width, "Width of the preview in pixels")
