@@ -7,7 +7,8 @@
 // B_ref (green channel), wall time is the solve's own (loading and patching excluded,
 // they are printed once).
 //
-// Usage: bench_time_to_accuracy [threads]   (default: all cores)
+// Usage: bench_time_to_accuracy [threads [configuration name contains]]   (default: all
+// cores, every configuration). Run it from build/bench (the reference cache goes there).
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/probe.h"
@@ -44,7 +45,8 @@ struct Result {
   std::vector<double> values_ambient;  // the same with the ambient display term
 };
 
-Result solve(double patch_size, rad::Method method, int max_level, double converge, int threads) {
+Result solve(double patch_size, rad::Method method, int max_level, double converge, int threads,
+             double overshoot = 1.0) {
   const std::string path = std::string(DYNRAD_SAMPLES_DIR) + "/globillum_room.obj";
   LoadedScene loaded = load_scene(path);
   make_patches(*loaded.mesh, patch_size);
@@ -52,6 +54,7 @@ Result solve(double patch_size, rad::Method method, int max_level, double conver
   rad::SolveOptions options;
   options.converge = converge;
   options.threads = threads;
+  options.overshoot = overshoot;
   rad::RefineSettings refine;
   refine.method = method;
   refine.max_level = max_level;
@@ -83,31 +86,54 @@ double mean_error(const std::vector<double>& values, const std::vector<double>& 
 
 int main(int argc, char** argv) {
   const int threads = argc > 1 ? std::atoi(argv[1]) : 0;
-  const Result reference = solve(0.5, rad::Method::progressive, 0, 1e-4, threads);
-  std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
-              reference.report.iterations, reference.report.seconds, reference.values.size());
+  // The reference takes a minute or two; it is kept beside the program and reused
+  // (delete the file to recompute it, e.g. after a change to the solver's physics).
+  const std::string cache = "time_to_accuracy_reference.txt";
+  Result reference;
+  if (std::FILE* f = std::fopen(cache.c_str(), "r")) {
+    for (double v; std::fscanf(f, "%lf", &v) == 1;) reference.values.push_back(v);
+    std::fclose(f);
+  }
+  if (reference.values.size() != grid().size()) {
+    reference = solve(0.5, rad::Method::progressive, 0, 1e-4, threads);
+    std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
+                reference.report.iterations, reference.report.seconds, reference.values.size());
+    if (std::FILE* f = std::fopen(cache.c_str(), "w")) {
+      for (double v : reference.values) std::fprintf(f, "%.17g\n", v);
+      std::fclose(f);
+    }
+  } else {
+    std::printf("reference: %zu grid points from %s\n", reference.values.size(), cache.c_str());
+  }
   struct Config {
     const char* name;
     double patch;
     rad::Method method;
     int level;
+    double overshoot;
   };
   const Config configs[] = {
-      {"progressive 2.0 m", 2.0, rad::Method::progressive, 0},
-      {"progressive 1.0 m", 1.0, rad::Method::progressive, 0},
-      {"dynamic 2.0 m, level 2", 2.0, rad::Method::dynamic, 1},
-      {"dynamic 2.0 m, level 3", 2.0, rad::Method::dynamic, 2},
-      {"dynamic 1.0 m, level 2", 1.0, rad::Method::dynamic, 1},
+      {"progressive 2.0 m", 2.0, rad::Method::progressive, 0, 1.0},
+      {"progressive 1.0 m", 1.0, rad::Method::progressive, 0, 1.0},
+      {"progressive 1.0 m, w 1.3", 1.0, rad::Method::progressive, 0, 1.3},
+      {"progressive 1.0 m, w 1.6", 1.0, rad::Method::progressive, 0, 1.6},
+      {"dynamic 2.0 m, level 2", 2.0, rad::Method::dynamic, 1, 1.0},
+      {"dynamic 2.0 m, level 3", 2.0, rad::Method::dynamic, 2, 1.0},
+      {"dynamic 1.0 m, level 2", 1.0, rad::Method::dynamic, 1, 1.0},
+      {"dynamic 1.0 m, level 2, w 1.3", 1.0, rad::Method::dynamic, 1, 1.3},
   };
-  std::printf("%-26s %8s %7s %9s %10s %9s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error",
+  std::printf("%-30s %8s %7s %9s %10s %9s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error",
               "+ambient");
-  for (const Config& c : configs)
+  const std::string only = argc > 2 ? argv[2] : "";
+  for (const Config& c : configs) {
+    if (!only.empty() && std::string(c.name).find(only) == std::string::npos) continue;
     for (double converge : {0.3, 0.1, 0.05, 0.02, 0.01, 0.005}) {
-      const Result r = solve(c.patch, c.method, c.level, converge, threads);
-      std::printf("%-26s %7.1f%% %7zu %9zu %10.3f %8.2f%% %8.2f%%\n", c.name, 100 * converge, r.report.iterations,
+      const Result r = solve(c.patch, c.method, c.level, converge, threads, c.overshoot);
+      std::printf("%-30s %7.1f%% %7zu %9zu %10.3f %8.2f%% %8.2f%%\n", c.name, 100 * converge, r.report.iterations,
                   r.report.elements, r.report.seconds, 100 * mean_error(r.values, reference.values),
                   100 * mean_error(r.values_ambient, reference.values));
       std::fflush(stdout);
     }
+  }
   return 0;
 }

@@ -180,6 +180,18 @@ std::vector<std::uint32_t> ascii_data_lines(const std::string& text, const std::
   return lines;
 }
 
+// Whether OpenMesh reads an OFF file as binary: its first line is [ST][C][N]OFF, any one
+// character, then BINARY. Anything else it reads as ASCII, so the checks must too.
+bool off_is_binary(const std::string& text) {
+  std::size_t p = 0;
+  if (text.compare(p, 2, "ST") == 0) p += 2;
+  if (text.compare(p, 1, "C") == 0) ++p;
+  if (text.compare(p, 1, "N") == 0) ++p;
+  if (text.compare(p, 3, "OFF") != 0) return false;
+  p += 4;
+  return p <= text.size() && text.compare(p, 6, "BINARY") == 0 && text.find('\n') > p;
+}
+
 // Comments ('#' to the end of the line) replaced by nothing, line breaks kept.
 std::string strip_comments(const std::string& text) {
   std::string out;
@@ -316,7 +328,7 @@ DeclaredCounts check_declared_counts(const std::string& path, const std::string&
     }
     body = header.body;
   } else if (ext == ".off") {
-    if (text.find("BINARY") < 16) {
+    if (off_is_binary(text)) {
       // Binary OFF as OpenMesh reads and writes it: after the first line, three 32-bit
       // little-endian counts (vertices, faces, edges); a vertex is at least 3 floats, a
       // face at least a count and 3 indices. OpenMesh loops over whatever they say.
@@ -584,7 +596,7 @@ void normalise_ascii_off(const std::string& path, std::string& parsed, const std
 }
 
 bool is_ascii(const std::string& text, const std::string& ext) {
-  if (ext == ".off") return text.rfind("OFF BINARY", 0) != 0 && text.find("BINARY") > 16;
+  if (ext == ".off") return !off_is_binary(text);
   if (ext == ".ply") return text.find("format ascii") != std::string::npos;
   return text.rfind("solid", 0) == 0;
 }

@@ -56,12 +56,15 @@ bool Solver::shoot_once() {
   // pick brightest patch: i
   const std::uint32_t i = brightest_patch();
   Patch& sender = patches_[i];
-  const Rgb shot = sender.unshot;
-  if (shot.r + shot.g + shot.b <= 0) return false;
+  const Rgb unshot = sender.unshot;
+  if (unshot.r == 0 && unshot.g == 0 && unshot.b == 0) return false;
+  // With over-relaxation (SolveOptions::overshoot) a little more than the unshot
+  // radiosity, or later a correction of the opposite sign.
+  const Rgb shot = unshot * options_.overshoot;
   sender_ = i;
   current_shot_ = shot;
   form_factor_.clear();
-  sender.unshot = Rgb();  // update(i): everything it held is shot now
+  sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
   // (sender.shot grows only after this shot's walk: elements created during the walk
   // gather the shots before this one and then receive this one like the rest.)
 
@@ -82,8 +85,7 @@ bool Solver::shoot_once() {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
   };
-  for (std::uint32_t j = 0; j < patches_.size(); ++j)
-    if (j != i) level.push_back(hierarchy_.patch_root(j));
+  receivers(i, level);  // every patch j but those that cannot (or hardly) receive
 
   while (!level.empty()) {
     compute_form_factors(level);  // in parallel, for every corner of this level

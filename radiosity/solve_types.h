@@ -25,6 +25,23 @@ struct SolveOptions {
   // its energy balance; it makes an early stop (a time limit, Ctrl-C) look like the
   // converged picture rather than a darker one. It vanishes as the solve converges.
   bool ambient_display = false;
+  // Over-relaxation of each shot (Gortler, Cohen & Slusallek 1993; Feda & Purgathofer
+  // 1992 call it overshooting): the sender shoots `overshoot` times its unshot
+  // radiosity and keeps the rest, 1 - overshoot of it, which is negative for values
+  // above 1 and is shot back later. It anticipates the light that will come back to the
+  // sender and cuts the number of shots to a given accuracy. 1 is the paper's (and
+  // Cohen et al. 1988's) progressive refinement. Convergence is then measured on the
+  // magnitude of unshot power.
+  double overshoot = 1.0;
+  // Receiver culling, per shot, before any form factor or ray (see Solver::receivers):
+  // patches that cannot exchange light with the sender (behind its plane, or with the
+  // sender behind theirs) are skipped exactly; then patches whose unoccluded share of
+  // the shot is bounded below negligible_share / (number of patches) are skipped too,
+  // so that all those skipped in one shot carry at most `negligible_share` of its power
+  // (the normalisation of each shot hands it to the receivers that remain). 0 turns the
+  // second rule off; `cull` false turns both off (for tests and measurements).
+  bool cull = true;
+  double negligible_share = 1e-4;
   // Called at every shot boundary; returning true stops the solve there (signals).
   std::function<bool()> should_stop;
   // Called after every shot.
@@ -57,6 +74,9 @@ struct SolveReport {
   std::string refinement_stopped;
   std::size_t refinement_stopped_at = 0;
   std::size_t peak_resident_memory = 0;  // bytes, where known
+  std::uint64_t culled_receivers = 0;    // patches skipped by a shot, summed over shots (see SolveOptions::cull)
+  std::uint64_t negligible_receivers = 0;  // of those, skipped for a negligible bound
+  double negligible_share_max = 0;       // the largest bound on the power skipped in one shot
   EnergyBalance energy;
 };
 

@@ -47,6 +47,7 @@ Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v) {
 }
 
 double sum(const Rgb& c) { return c.r + c.g + c.b; }
+double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
 
 // A vertex's form factor depends on its position and its surface's facing only, so it
 // is computed once per vertex and facing, whichever patch asks.
@@ -82,6 +83,8 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     for (int k = 0; k < 3; ++k) patch.corners[k] = hierarchy_.position(el.corners[k]);
     patch.normal = hierarchy_.normal(root);
     patch.area = el.area;
+    patch.centre = (patch.corners[0] + patch.corners[1] + patch.corners[2]) / 3.0;
+    for (const Vec3d& c : patch.corners) patch.radius = std::max(patch.radius, (c - patch.centre).norm());
     leaves.clear();
     hierarchy_.leaves(root, leaves);
     const Material& m = scene_.material(hierarchy_.element(leaves.front()).face);
@@ -91,6 +94,9 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     report_.energy.emitted += m.emission * patch.area;
   }
   emitted_total_ = sum(report_.energy.emitted);
+  unshot_magnitude_ = emitted_total_;
+  if (!(options_.overshoot > 0 && options_.overshoot < 2))
+    throw std::invalid_argument("overshoot must lie between 0 and 2 (1: none)");
   if (!(emitted_total_ > 0)) throw std::invalid_argument("no surface emits light");
   // Facing classes: normals equal to about 1e-9.
   std::map<std::array<long long, 3>, std::uint32_t> planes;
@@ -119,7 +125,7 @@ std::uint32_t Solver::brightest_patch() const {
   std::uint32_t best = 0;
   double best_power = -1;
   for (std::uint32_t p = 0; p < patches_.size(); ++p) {
-    const double power = sum(patches_[p].unshot) * patches_[p].area;
+    const double power = magnitude(patches_[p].unshot) * patches_[p].area;
     if (power > best_power) {
       best = p;
       best_power = power;
@@ -167,7 +173,47 @@ Rgb Solver::ambient() const {
              unshot.b / area * factor(mean_reflectance.b));
 }
 
-double Solver::unshot_fraction() const { return sum(report_.energy.unshot) / emitted_total_; }
+void Solver::receivers(std::uint32_t i, std::vector<ElementId>& roots) {
+  const Patch& sender = patches_[i];
+  const double per_patch = options_.negligible_share / static_cast<double>(patches_.size());
+  auto in_front = [](const Patch& plane_of, const Patch& other) {
+    for (const Vec3d& c : other.corners)
+      if (OpenMesh::dot(plane_of.normal, c - plane_of.corners[0]) > 0) return true;
+    return false;
+  };
+  double skipped_share = 0;
+  for (std::uint32_t j = 0; j < patches_.size(); ++j) {
+    if (j == i) continue;
+    const Patch& receiver = patches_[j];
+    if (options_.cull) {
+      // Exact: every point of the receiver is behind or on the sender's plane (the
+      // sender sends nothing there), or the whole sender is behind or on the receiver's
+      // plane (the receiver's hemisphere does not hold it). Both give F = 0 at every
+      // point, which is what point_to_polygon would compute.
+      if (!in_front(sender, receiver) || !in_front(receiver, sender)) {
+        ++report_.culled_receivers;
+        continue;
+      }
+      // Negligible: at any point x of the receiver, F(x -> sender) <= A_i / (pi d^2),
+      // with d no more than the distance between the two patches, so the receiver's
+      // share of the shot's power, A_j F_avg / A_i, is at most A_j / (pi d^2).
+      const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
+      if (per_patch > 0 && d > 0) {
+        const double bound = receiver.area / (M_PI * d * d);
+        if (bound < per_patch) {
+          skipped_share += bound;
+          ++report_.culled_receivers;
+          ++report_.negligible_receivers;
+          continue;
+        }
+      }
+    }
+    roots.push_back(hierarchy_.patch_root(j));
+  }
+  report_.negligible_share_max = std::max(report_.negligible_share_max, skipped_share);
+}
+
+double Solver::unshot_fraction() const { return unshot_magnitude_ / emitted_total_; }
 
 // Fraction of the power patch `id` shoots that reaches no front face (it leaves the
 // scene or meets a black back side): cosine-weighted rays from points on the patch,
@@ -456,8 +502,13 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uin
   report_.energy.escaped += not_received * escaped_share;
   report_.energy.absorbed += not_received * (1 - escaped_share);
   Rgb unshot;
-  for (const Patch& p : patches_) unshot += p.unshot * p.area;
+  double unshot_magnitude = 0;
+  for (const Patch& p : patches_) {
+    unshot += p.unshot * p.area;
+    unshot_magnitude += magnitude(p.unshot) * p.area;
+  }
   report_.energy.unshot = unshot;
+  unshot_magnitude_ = unshot_magnitude;
 }
 
 Solver::Output Solver::output(bool ambient_display) {

@@ -84,9 +84,14 @@ class Solver {
     Rgb shot;  // radiosity shot so far, in total
     double lost = -1, escaped = 0;  // see lost_fraction()
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
+    Vec3d centre;                   // centre and radius of a sphere around the patch
+    double radius = 0;
   };
 
   std::uint32_t brightest_patch() const;
+  // The patches sender i's shot must visit: all others but those SolveOptions::cull
+  // rules out. Appends their roots to `roots`; counts in the report.
+  void receivers(std::uint32_t i, std::vector<ElementId>& roots);
   // False once a limit of RefineSettings is reached; says so in the report, once.
   bool refinement_allowed();
   double lost_fraction(std::uint32_t patch);
@@ -149,6 +154,7 @@ class Solver {
   VertexPlaneMap<Vec3d> evaluation_point_;        // whole solve
   const CornerFormFactor& corner_form_factor(ElementId e, int corner) const;
   double emitted_total_ = 0;
+  double unshot_magnitude_ = 0;  // sum over patches of |unshot| x area, all channels
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;
   SolveReport report_;

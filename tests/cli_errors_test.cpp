@@ -178,6 +178,10 @@ TEST(BadInput, OffKeywordAndCountsMustHaveALineEach) {
                            "COFF\x12"
                            "8 2 0\n#c\n"),
                  {"k.off:1", "only the keyword"});
+  // Found by fuzzing: "BINARY" not where OpenMesh looks for it, so it read the file as
+  // ASCII while the checks took it for binary (a 4-billion-face loop).
+  expect_refused(dir, dir.write("b.off", std::string("OFFOGF BINARY 0.6\n\0\0\0\0 comm0\n0.3, 0\n", 26)),
+                 {"b.off:1", "only the keyword"});
   expect_refused(dir, dir.write("one.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
                  {"one.off:1", "Put the counts on the next line"});
   expect_refused(dir, dir.write("two.off", "OFF\n# counts\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),

@@ -3,6 +3,7 @@
 #include "mesh/cleanup.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/probe.h"
 #include "radiosity/solver.h"
 #include "test_support.h"
 
@@ -244,6 +245,72 @@ TEST_P(Physics, NoLightThroughAWallSharedByTwoRooms) {
   }
   EXPECT_GT(in_b, 20u);
   EXPECT_GT(lit_a, 20u);
+}
+
+// Receiver culling (SolveOptions::cull). Skipping patches behind the sender's plane,
+// or with the sender behind theirs, is exact: they would get F = 0 at every point.
+TEST_P(Physics, CullingBehindPlanesChangesNothing) {
+  PolygonSoup soup = empty_soup({Material{"wall", Rgb(0.6), Rgb(0.0), "test", true},
+                                 Material{"lamp", Rgb(0.6), Rgb(10.0), "test", true}});
+  add_room(soup, {0, 0, 0}, {3, 2, 1.5}, {0, 0, 0, 0, 0, 1});
+  std::vector<Rgb> values[2];
+  std::uint64_t culled[2] = {0, 0};
+  for (int cull = 0; cull < 2; ++cull) {
+    SolveOptions options;
+    options.max_iterations = 40;
+    options.converge = 0;
+    options.cull = cull == 1;
+    options.negligible_share = 0;  // only the exact rule
+    Solved s = prepare(soup, 0.4, options, GetParam());
+    culled[cull] = s.solver->run().culled_receivers;
+    values[cull] = s.solver->output().radiosity;
+  }
+  EXPECT_EQ(culled[0], 0u);
+  EXPECT_GT(culled[1], 40u * 20u);  // every shot skips at least its own face's other patches
+  ASSERT_EQ(values[0].size(), values[1].size());
+  for (std::size_t v = 0; v < values[0].size(); ++v) EXPECT_NEAR(values[1][v].g, values[0][v].g, 1e-12 * 10);
+}
+
+// The negligible rule: in a 20 m corridor lit at one end, far patches are skipped by
+// shots from the lamp; a shot skips at most `negligible_share` of its power, which the
+// normalisation hands to the patches it reaches. Near the lamp the values move by no
+// more than that share. (Progressive and dynamic: adaptive is slow in a corridor.)
+TEST(Culling, NegligibleReceiversCostAtMostTheirStatedShare) {
+  PolygonSoup soup = empty_soup({Material{"wall", Rgb(0.5), Rgb(0.0), "test", true},
+                                 Material{"lamp", Rgb(0.5), Rgb(10.0), "test", true}});
+  add_room(soup, {0, 0, 0}, {20, 1, 1}, {1, 0, 0, 0, 0, 0});
+  const double share = 0.2;  // large, so that a small scene has skips
+  for (const Config& config : {Config{Method::progressive, {}, "progressive"}, Config{Method::dynamic, {}, "dynamic"}}) {
+    Solved solved[2];
+    SolveReport reports[2];
+    for (int cull = 0; cull < 2; ++cull) {
+      SolveOptions options;
+      options.converge = 0.05;
+      options.negligible_share = cull ? share : 0.0;
+      solved[cull] = prepare(soup, 0.5, options, config);
+      reports[cull] = solved[cull].solver->run();
+    }
+    EXPECT_EQ(reports[0].negligible_receivers, 0u) << config.name;
+    EXPECT_GT(reports[1].negligible_receivers, 0u) << config.name;
+    EXPECT_GT(reports[1].negligible_share_max, 0.0) << config.name;
+    EXPECT_LE(reports[1].negligible_share_max, share) << config.name;
+    const auto full = solved[0].solver->output(), culled = solved[1].solver->output();
+    for (const Rgb& b : culled.radiosity) {
+      ASSERT_TRUE(std::isfinite(b.g));
+      ASSERT_GE(b.g, 0.0);
+    }
+    std::size_t near = 0;
+    for (double x = 0.3; x < 5; x += 0.5)
+      for (const auto& [z, n] : {std::pair{0.0, Vec3d(0, 0, 1)}, std::pair{1.0, Vec3d(0, 0, -1)}}) {
+        const Vec3d p(x, 0.4, z);
+        const auto a = probe(*solved[0].scene, full.split, full.radiosity, p, n);
+        const auto b = probe(*solved[1].scene, culled.split, culled.radiosity, p, n);
+        ASSERT_TRUE(a && b);
+        EXPECT_NEAR(b->g, a->g, share * a->g) << config.name << " at x = " << x << ", z = " << z;
+        ++near;
+      }
+    EXPECT_EQ(near, 20u);
+  }
 }
 
 TEST_P(Physics, CornellFloorIsRedderNextToTheRedWall) {

@@ -201,6 +201,9 @@ int run_solve(SolveCliOptions& options) {
     j["refinement_stopped"] = report.refinement_stopped;
     j["refinement_stopped_at"] = report.refinement_stopped_at;
     j["peak_resident_memory"] = report.peak_resident_memory;
+    j["culled_receivers"] = report.culled_receivers;
+    j["negligible_receivers"] = report.negligible_receivers;
+    j["negligible_share_max"] = report.negligible_share_max;
     j["ambient_display"] = options.solve.ambient_display;
     j["exposure"] = exposure;
     j["patch_size"] = patch_size;
