@@ -314,6 +314,24 @@ TEST(Simplify, ResultIsConforming) {
   EXPECT_LE(scene.simplify.worst_aspect_after, SimplifyOptions{}.max_aspect_ratio + 1e-9);
 }
 
+// The generated building (samples/make_building.py): doors, windows, furniture on the
+// floor, and cleanup's T-junction repairs, at a small size.
+TEST(Simplify, GeneratedBuildingKeepsAreasAndOpenings) {
+  test::TempDir dir;
+  const std::string path = dir.path("building.obj");
+  const auto r = test::run_shell("python3 '" DYNRAD_SAMPLES_DIR "/make_building.py' '" + path +
+                                 "' --rooms 2 2 --cell 0.25");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const LoadedScene before = load(path, false), after = load(path, true);
+  EXPECT_LT(after.mesh->face_count() * 8, before.mesh->face_count());
+  const auto a0 = area_per_material(*before.mesh), a1 = area_per_material(*after.mesh);
+  ASSERT_EQ(a1.size(), a0.size());
+  for (const auto& [name, area] : a0) EXPECT_NEAR(a1.at(name), area, 1e-9 * area) << name;
+  EXPECT_EQ(boundary_segments(*after.mesh), boundary_segments(*before.mesh));
+  expect_valid_half_edge_mesh(*after.mesh);
+  EXPECT_LE(test::count_t_vertices(*after.mesh), test::count_t_vertices(*before.mesh));
+}
+
 // Area-weighted mean green radiosity over the faces of a lit PLY whose normal is
 // closest to `direction`.
 double mean_radiosity(const std::string& lit, const Vec3d& direction) {
