@@ -59,11 +59,12 @@ void check_magnitudes(const std::string& path, const SceneMesh& mesh) {
 
 }  // namespace
 
-LoadedScene load_scene(const std::string& path, const CleanupOptions& options) {
-  return load_soup(read_input(path), path, options);
+LoadedScene load_scene(const std::string& path, const CleanupOptions& options, const SimplifyOptions& simplify) {
+  return load_soup(read_input(path), path, options, simplify);
 }
 
-LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const CleanupOptions& options) {
+LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const CleanupOptions& options,
+                      const SimplifyOptions& simplify) {
   if (!is_finite(soup.bounds().lo) || !is_finite(soup.bounds().hi))
     throw InputError(path, 0, "has coordinates that are not finite.");
   // Cleanup and the solver work with areas, the size squared: it must be a normal double.
@@ -92,6 +93,7 @@ LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const Cl
   if (const std::string warning = dropped_emitters(soup, clean); !warning.empty()) scene.warnings.push_back(warning);
   scene.mesh = std::make_unique<SceneMesh>(clean);
   check_magnitudes(path, *scene.mesh);
+  scene.simplify = simplify_flat_regions(*scene.mesh, simplify);
   return scene;
 }
 

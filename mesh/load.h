@@ -4,6 +4,7 @@
 
 #include "mesh/cleanup.h"
 #include "mesh/scene_mesh.h"
+#include "mesh/simplify.h"
 
 #include <memory>
 #include <string>
@@ -14,17 +15,21 @@ namespace dynrad {
 struct LoadedScene {
   std::unique_ptr<SceneMesh> mesh;
   CleanupReport cleanup;
+  SimplifyReport simplify;  // all zero-change unless SimplifyOptions::enabled
   std::size_t input_files = 0;
   std::vector<std::string> warnings;
 };
 
 // Throws InputError for unusable input, including a scene that cleanup empties.
-LoadedScene load_scene(const std::string& path, const CleanupOptions& options = {});
+// `simplify` merges flat regions after cleanup (mesh/simplify.h); off by default.
+LoadedScene load_scene(const std::string& path, const CleanupOptions& options = {},
+                       const SimplifyOptions& simplify = {});
 
 // The same for a soup built in memory (the C ABI, host add-ons): cleans it and builds
 // the mesh. Materials must already be checked (check_material in mesh/import.h);
 // `label` stands in for the file name in messages. Throws InputError for non-finite
 // coordinates or a soup that cleanup empties.
-LoadedScene load_soup(const PolygonSoup& soup, const std::string& label, const CleanupOptions& options = {});
+LoadedScene load_soup(const PolygonSoup& soup, const std::string& label, const CleanupOptions& options = {},
+                      const SimplifyOptions& simplify = {});
 
 }  // namespace dynrad

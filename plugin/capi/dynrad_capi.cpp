@@ -160,7 +160,11 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
 }
 
 std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup) {
-  LoadedScene loaded = load_soup(soup, kInputLabel);
+  // Flat regions merged before patching, as `dynrad solve` does by default, so that
+  // both give one answer (mesh/simplify.h; the result is a new mesh either way).
+  SimplifyOptions simplify;
+  simplify.enabled = true;
+  LoadedScene loaded = load_soup(soup, kInputLabel, {}, simplify);
   if (!(loaded.mesh->emitting_area() > 0))
     fail(DYNRAD_NO_EMITTER,
          "dynrad_scene_create: every emitting polygon is degenerate (no area), so nothing emits light.");

@@ -24,10 +24,13 @@ nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 int run_info(const InfoOptions& options) {
   CleanupOptions cleanup;
   cleanup.merge_tolerance = options.load.merge_tolerance;
-  LoadedScene scene = load_scene(options.load.input, cleanup);
+  SimplifyOptions simplify;
+  simplify.enabled = options.load.simplify;
+  LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
   SceneMesh& mesh = *scene.mesh;
-  // Measured before patching: what the model itself holds.
-  const std::size_t model_vertices = mesh.vertex_count(), model_faces = mesh.face_count();
+  const SimplifyReport& s = scene.simplify;
+  // What the cleaned model itself holds, before simplification and patching.
+  const std::size_t model_vertices = s.vertices_before, model_faces = s.faces_before;
   const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
   const PatchingReport patching = make_patches(mesh, patch_size);
   const CleanupReport& r = scene.cleanup;
@@ -64,6 +67,15 @@ int run_info(const InfoOptions& options) {
     j["input_polygons"] = r.input_polygons;
     j["vertices"] = model_vertices;
     j["faces"] = model_faces;
+    j["simplify"] = {{"enabled", simplify.enabled},
+                     {"triangles_before", s.faces_before},
+                     {"triangles_after", s.faces_after},
+                     {"vertices_before", s.vertices_before},
+                     {"vertices_after", s.vertices_after},
+                     {"locked_vertices", s.locked_vertices},
+                     {"worst_aspect_before", s.worst_aspect_before},
+                     {"worst_aspect_after", s.worst_aspect_after},
+                     {"seconds", s.seconds}};
     j["patches"] = {{"patch_size", patch_size},
                     {"count", patching.patches},
                     {"splits", patching.splits.total()},
@@ -95,6 +107,10 @@ int run_info(const InfoOptions& options) {
                            scene.input_files == 1 ? "" : "s");
   std::cout << fmt::format("read            {} points, {} polygons\n", r.input_points, r.input_polygons);
   std::cout << fmt::format("mesh            {} vertices, {} triangles\n", model_vertices, model_faces);
+  if (simplify.enabled)
+    std::cout << fmt::format(
+        "simplified      {} -> {} triangles, {} vertices locked, worst aspect {:.3g} -> {:.3g}, {:.2f} s\n",
+        s.faces_before, s.faces_after, s.locked_vertices, s.worst_aspect_before, s.worst_aspect_after, s.seconds);
   std::cout << fmt::format("patches         {} at patch size {:.4g} (smallest angle {:.1f} deg, model's {:.1f})\n",
                            patching.patches, patch_size, patching.min_angle_after, patching.min_angle_before);
   std::cout << fmt::format("bounds          ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}), size {:.6g} x {:.6g} x {:.6g}\n",
@@ -127,6 +143,7 @@ Command add_info_command(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* command = app.add_subcommand("info", "Print what dynrad reads from a model: sizes, materials, repairs");
   add_load_options(*command, options->load);
+  add_simplify_flag(*command, options->load);
   command->add_flag("--json", options->json, "Print the information as JSON");
   command->add_option("--patch-size", options->patch_size,
                       "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")

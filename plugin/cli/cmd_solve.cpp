@@ -122,8 +122,13 @@ int run_solve(SolveCliOptions& options) {
 
   CleanupOptions cleanup;
   cleanup.merge_tolerance = options.load.merge_tolerance;
-  LoadedScene scene = load_scene(options.load.input, cleanup);
+  SimplifyOptions simplify;
+  simplify.enabled = options.load.simplify;
+  LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  if (simplify.enabled)
+    spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", scene.simplify.faces_before,
+                 scene.simplify.faces_after, scene.simplify.seconds);
   SceneMesh& mesh = *scene.mesh;
   if (!(mesh.emitting_area() > 0))
     throw InputError(options.load.input, 0,
@@ -242,6 +247,7 @@ Command add_solve_command(CLI::App& app) {
   auto options = std::make_shared<SolveCliOptions>();
   CLI::App* command = app.add_subcommand("solve", "Light a model with radiosity and write per-vertex results");
   add_load_options(*command, options->load);
+  add_simplify_flag(*command, options->load);
   command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
   command->add_option("--method", options->method, "progressive, adaptive (Cohen et al. 1986) or dynamic (Dubuis & Bieri)")
       ->capture_default_str();

@@ -27,7 +27,10 @@ Command add_probe_command(CLI::App& app);
 struct LoadOptions {
   std::string input;
   double merge_tolerance = 1e-6;
+  bool simplify = true;  // merge flat regions before patching (mesh/simplify.h)
 };
 void add_load_options(CLI::App& command, LoadOptions& options);
+// `--no-simplify`, for the commands that patch the model (solve, info).
+void add_simplify_flag(CLI::App& command, LoadOptions& options);
 
 }  // namespace dynrad::cli

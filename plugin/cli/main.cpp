@@ -20,6 +20,11 @@ void add_load_options(CLI::App& command, LoadOptions& options) {
       ->check(CLI::Range(0.0, 0.01));
 }
 
+void add_simplify_flag(CLI::App& command, LoadOptions& options) {
+  command.add_flag("!--no-simplify", options.simplify,
+                   "Keep every cleaned triangle: do not merge the triangles of flat regions before patching");
+}
+
 }  // namespace dynrad::cli
 
 int main(int argc, char** argv) {
