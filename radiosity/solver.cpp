@@ -143,6 +143,17 @@ std::size_t resident_memory() {
   return read == 2 ? static_cast<std::size_t>(resident) * static_cast<std::size_t>(sysconf(_SC_PAGESIZE)) : 0;
 }
 
+std::size_t peak_resident_memory() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  std::size_t kib = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmHWM: %zu kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib * 1024;
+}
+
 bool Solver::refinement_allowed() {
   if (!report_.refinement_stopped.empty()) return false;
   if (refine_.max_elements > 0 && hierarchy_.element_count() >= refine_.max_elements) {
@@ -570,7 +581,7 @@ SolveReport Solver::run() {
   report_.receivers = scene_.vertex_count();
   report_.visibility_rays = visibility_->rays();
   report_.form_factor_sum_error = report_.iterations ? form_factor_error_sum_ / report_.iterations : 0;
-  report_.peak_resident_memory = std::max(report_.peak_resident_memory, resident_memory());
+  report_.peak_resident_memory = std::max(report_.peak_resident_memory, peak_resident_memory());
   return report_;
 }
 

@@ -48,6 +48,8 @@ struct RefineSettings {
 
 // Resident memory of this process in bytes (Linux /proc; 0 where unknown).
 std::size_t resident_memory();
+// The process's peak resident memory so far (VmHWM; 0 where unknown).
+std::size_t peak_resident_memory();
 
 class Solver {
  public:

@@ -298,6 +298,15 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--crease-angle", options->solve.crease_angle, "Split vertices where faces meet at more than this")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
+  command->add_option("--overshoot", options->solve.overshoot,
+                      "Over-relax each shot by this factor (1: none; 1.3 reaches a given accuracy in fewer shots)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 1.9));
+  command->add_option("--negligible-share", options->solve.negligible_share,
+                      "Per shot, skip receivers whose bounded share of its power is below this over the patch count "
+                      "(0: never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.1));
   command->add_flag("--ambient", options->solve.ambient_display,
                    "Add the ambient estimate of light not yet shot to the written values (Cohen et al. 1988); "
                    "useful with --time-limit");
