@@ -131,21 +131,29 @@ bool Solver::shoot_once() {
       }
       decisions[n].go_on = go_on;
     });
-    for (std::size_t n = 0; n < level.size(); ++n) {
+    // Their effects on the values: each touches q and q's own children only, so the
+    // elements of a level are independent (in parallel); the lists and counters follow
+    // in level order.
+    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t n) {
       const ElementId q = level[n];
-      const Element& el = hierarchy_.element(q);
-      const OracleInputs& in = decisions[n].in;
       if (decisions[n].go_on) {
-        // dynamic: a whole paper level the shot passes through
-        if (refine_.method == Method::dynamic && el.generation % 2 == 0) count_transfer(el);
         flush(q);  // the children must hold what earlier shots pushed down before they are shot
-        passed.emplace_back(q, in.current);
-        if (el.is_leaf()) subdivide.push_back(q);
       } else {
         // The shot stops at q: q takes dB, and what is already below q gets it
         // interpolated from q's corners (push-down) instead of a transfer of its own.
-        value_[q] = in.cumulated;
-        push_down(q, in.current);
+        value_[q] = decisions[n].in.cumulated;
+        push_down(q, decisions[n].in.current);
+      }
+    });
+    for (std::size_t n = 0; n < level.size(); ++n) {
+      const ElementId q = level[n];
+      const Element& el = hierarchy_.element(q);
+      if (decisions[n].go_on) {
+        // dynamic: a whole paper level the shot passes through
+        if (refine_.method == Method::dynamic && el.generation % 2 == 0) count_transfer(el);
+        passed.emplace_back(q, decisions[n].in.current);
+        if (el.is_leaf()) subdivide.push_back(q);
+      } else {
         terminals.push_back(q);
         count_transfer(el);
       }

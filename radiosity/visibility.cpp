@@ -137,7 +137,7 @@ int Visibility::visible_count(const Vec3d& from, const Vec3d& from_normal, const
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded1M(scene_, &context, rays, static_cast<unsigned>(n), sizeof(RTCRay));
     for (int i = 0; i < n; ++i) visible += rays[i].tfar >= 0;
-    rays_.fetch_add(static_cast<std::uint64_t>(n), std::memory_order_relaxed);
+    rays_.local() += static_cast<std::uint64_t>(n);
   }
   return visible;
 }
@@ -171,7 +171,7 @@ Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
-  rays_.fetch_add(1, std::memory_order_relaxed);
+  ++rays_.local();
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit::nothing;
   return OpenMesh::dot(face_normals_[rh.hit.primID], direction) < 0 ? Hit::front : Hit::back;
 }
@@ -185,7 +185,7 @@ Visibility::Intersection Visibility::intersect(const Vec3d& origin_world, const 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
-  rays_.fetch_add(1, std::memory_order_relaxed);
+  ++rays_.local();
   Intersection out;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
   out.hit = true;
