@@ -63,7 +63,6 @@ bool Solver::shoot_once() {
   const Rgb shot = unshot * options_.overshoot;
   sender_ = i;
   current_shot_ = shot;
-  form_factor_.clear();
   sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
   // (sender.shot grows only after this shot's walk: elements created during the walk
   // gather the shots before this one and then receive this one like the rest.)

@@ -49,10 +49,6 @@ Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v) {
 double sum(const Rgb& c) { return c.r + c.g + c.b; }
 double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
 
-// A vertex's form factor depends on its position and its surface's facing only, so it
-// is computed once per vertex and facing, whichever patch asks.
-std::uint64_t key(VertexHandle v, std::uint32_t plane) { return (static_cast<std::uint64_t>(v.idx()) << 32) | plane; }
-
 }  // namespace
 
 Method parse_method(const std::string& name) {
@@ -113,6 +109,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     value_[e] = {emission, emission, emission};
   }
   initialised_ = hierarchy_.element_count();
+  register_receivers(0);
   pending_.resize(initialised_);
   gathered_in_.assign(initialised_, 0);
   report_.method = method_name(refine_.method);
@@ -255,37 +252,42 @@ double Solver::lost_fraction(std::uint32_t id) {
 }
 
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
-  struct Todo {
-    VertexHandle v;
-    Vec3d x, normal;
-    std::uint32_t plane;
-  };
-  std::vector<Todo> todo;
-  for (ElementId e : elements) {
-    const Element& el = hierarchy_.element(e);
-    for (VertexHandle v : el.corners) {
-      if (form_factor_.emplace(static_cast<std::uint32_t>(v.idx()), patches_[el.patch].plane).second)
-        todo.push_back({v, evaluation_point(v, e), patches_[el.patch].normal, patches_[el.patch].plane});
-    }
-  }
-  std::vector<CornerFormFactor> values(todo.size());
+  // The receivers this level needs and this shot has not computed: a serial pass of
+  // array lookups, then the form factors in parallel, each into its own slot.
+  const std::size_t shot = report_.iterations + 1;
+  std::vector<std::uint32_t> todo;
+  for (ElementId e : elements)
+    for (std::uint32_t r : corner_receiver_[e])
+      if (form_factor_shot_[r] != shot) {
+        form_factor_shot_[r] = shot;
+        todo.push_back(r);
+      }
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
-    values[n].visible = point_form_factor(todo[n].v, todo[n].x, todo[n].normal, sender_, &values[n].unoccluded);
+    const Receiver& r = receivers_[todo[n]];
+    CornerFormFactor& f = form_factor_[todo[n]];
+    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
   });
-  for (std::size_t n = 0; n < todo.size(); ++n)
-    *form_factor_.find(static_cast<std::uint32_t>(todo[n].v.idx()), todo[n].plane) = values[n];
 }
 
-const Vec3d& Solver::evaluation_point(VertexHandle v, ElementId e) {
-  const auto [point, added] =
-      evaluation_point_.emplace(static_cast<std::uint32_t>(v.idx()), patches_[hierarchy_.element(e).patch].plane);
-  if (added) {
-    // A step into the element: at a junction, the limit from inside the surface, and no
-    // ray starting in a neighbouring wall's plane.
-    const Vec3d position = hierarchy_.position(v);
-    *point = position + (hierarchy_.centroid(e) - position) * 1e-2;
+void Solver::register_receivers(ElementId first) {
+  corner_receiver_.resize(hierarchy_.element_count());
+  for (ElementId e = first; e < hierarchy_.element_count(); ++e) {
+    const Element& el = hierarchy_.element(e);
+    for (int k = 0; k < 3; ++k) {
+      const VertexHandle v = el.corners[k];
+      const auto [id, added] = receiver_id_.emplace(static_cast<std::uint32_t>(v.idx()), patches_[el.patch].plane);
+      if (added) {
+        *id = static_cast<std::uint32_t>(receivers_.size());
+        // A step into the element: at a junction, the limit from inside the surface,
+        // and no ray starting in a neighbouring wall's plane.
+        const Vec3d position = hierarchy_.position(v);
+        receivers_.push_back({v, el.patch, position + (hierarchy_.centroid(e) - position) * 1e-2});
+      }
+      corner_receiver_[e][k] = *id;
+    }
   }
-  return *point;
+  form_factor_.resize(receivers_.size());
+  form_factor_shot_.resize(receivers_.size(), 0);
 }
 
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
@@ -318,46 +320,33 @@ void Solver::gather_new_elements(std::size_t first) {
   for (std::uint32_t j = 0; j < patches_.size(); ++j)
     if (!patches_[j].shot.is_zero() || j == sender_) shooters.push_back(j);
   auto shot_of = [this](std::uint32_t j) { return j == sender_ ? patches_[j].shot + current_shot_ : patches_[j].shot; };
-  // One gather per new vertex and facing.
-  std::unordered_map<std::uint64_t, std::size_t> index;
-  struct Todo {
-    VertexHandle v;
-    Vec3d x;
-    std::uint32_t patch;
-  };
-  std::vector<Todo> todo;
-  for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
-    const Element& el = hierarchy_.element(e);
-    for (VertexHandle v : el.corners)
-      if (index.emplace(key(v, patches_[el.patch].plane), todo.size()).second)
-        todo.push_back({v, evaluation_point(v, e), el.patch});
-  }
+  // One gather per receiver of the new elements.
+  std::unordered_map<std::uint32_t, std::size_t> index;
+  std::vector<std::uint32_t> todo;
+  for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e)
+    for (std::uint32_t r : corner_receiver_[e])
+      if (index.emplace(r, todo.size()).second) todo.push_back(r);
   // Geometry only (sum of F times shot radiosity) is shared by the facing; emission
   // and reflectance are each element's own (a lamp and the ceiling around it share a
   // facing and the border vertices).
   std::vector<Rgb> gathered(todo.size());
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
-    const std::uint32_t patch_id = todo[n].patch;
-    const Patch& patch = patches_[patch_id];
+    const Receiver& r = receivers_[todo[n]];
+    const Patch& patch = patches_[r.patch];
     Rgb sum;
     for (std::uint32_t j : shooters)
-      if (j != patch_id) sum += shot_of(j) * point_form_factor(todo[n].v, todo[n].x, patch.normal, j, nullptr);
+      if (j != r.patch) sum += shot_of(j) * point_form_factor(r.vertex, r.point, patch.normal, j, nullptr);
     gathered[n] = sum;
   });
   for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
     const Element& el = hierarchy_.element(e);
     const Patch& patch = patches_[el.patch];
     for (int k = 0; k < 3; ++k)
-      value_[e][k] = patch.emission + patch.reflectance * gathered[index.at(key(el.corners[k], patch.plane))];
+      value_[e][k] = patch.emission + patch.reflectance * gathered[index.at(corner_receiver_[e][k])];
     gathered_in_[e] = report_.iterations + 1;
     report_.energy_transfers += shooters.size();  // shoot(j, e) for every earlier sender j
     if (el.generation > 0) report_.patch_element_transfers += shooters.size();
   }
-}
-
-const Solver::CornerFormFactor& Solver::corner_form_factor(ElementId e, int corner) const {
-  const Element& el = hierarchy_.element(e);
-  return *form_factor_.find(static_cast<std::uint32_t>(el.corners[corner].idx()), patches_[el.patch].plane);
 }
 
 double Solver::form_factor(ElementId e, int corner) const {
@@ -425,6 +414,7 @@ Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const
 
 void Solver::initialise_new_elements() {
   const std::size_t count = hierarchy_.element_count();
+  register_receivers(static_cast<ElementId>(initialised_));
   value_.resize(count);
   pending_.resize(count);
   gathered_in_.resize(count, 0);

@@ -98,15 +98,17 @@ class Solver {
   bool refinement_allowed();
   double lost_fraction(std::uint32_t patch);
   // Form factors at the corners of `elements` for the current sender, computed in
-  // parallel for every (vertex, patch) not yet known this shot.
+  // parallel for every receiver not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
   double form_factor(ElementId e, int corner) const;
-  // Where a vertex is evaluated for a facing: a hundredth of the way from the vertex to
-  // the centroid of the first element that needed it, then fixed for the whole solve.
-  // At a vertex that is also a sender's corner, F depends on the direction one comes
-  // from; the shares of all senders sum to the right total only if every shot uses the
-  // same point.
-  const Vec3d& evaluation_point(VertexHandle v, ElementId e);
+  // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
+  // elements appear (in id order: the same for any thread count), for elements from
+  // `first` on. A receiver is evaluated at a point a hundredth of the way from its
+  // vertex to the centroid of the first element that has it, fixed for the whole solve:
+  // at a vertex that is also a sender's corner, F depends on the direction one comes
+  // from, and the shares of all senders sum to the right total only if every shot uses
+  // the same point.
+  void register_receivers(ElementId first);
   // F from evaluation point x (of vertex v, on a surface with normal n) to patch
   // `sender`: Lambert's closed form times the fraction of seeded rays that arrive.
   double point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
@@ -152,9 +154,19 @@ class Solver {
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
   };
-  VertexPlaneMap<CornerFormFactor> form_factor_;  // this shot
-  VertexPlaneMap<Vec3d> evaluation_point_;        // whole solve
-  const CornerFormFactor& corner_form_factor(ElementId e, int corner) const;
+  struct Receiver {
+    VertexHandle vertex;
+    std::uint32_t patch;  // of the first element that has it (its facing is the receiver's)
+    Vec3d point;          // where it is evaluated
+  };
+  VertexPlaneMap<std::uint32_t> receiver_id_;                // (vertex, facing) -> receiver
+  std::vector<Receiver> receivers_;
+  std::vector<std::array<std::uint32_t, 3>> corner_receiver_;  // per element corner
+  std::vector<CornerFormFactor> form_factor_;                 // per receiver, this shot's...
+  std::vector<std::size_t> form_factor_shot_;                 // ...when this equals iterations + 1
+  const CornerFormFactor& corner_form_factor(ElementId e, int corner) const {
+    return form_factor_[corner_receiver_[e][corner]];
+  }
   double emitted_total_ = 0;
   double unshot_magnitude_ = 0;  // sum over patches of |unshot| x area, all channels
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
