@@ -92,9 +92,10 @@ bool Solver::shoot_once() {
     subdivide.clear();
     passed.clear();
     complete_split_next.clear();
-    // shoot(i, q) and the oracle for every q of this level, in parallel: they only read
-    // the state. Their effects follow in a serial pass, in level order, so the result
-    // does not depend on the number of threads.
+    // shoot(i, q), the oracle and the effect on the values, for every q of this level
+    // in parallel: each reads and writes only q and q's own children (the next level),
+    // so the elements of a level are independent. The lists and counters follow in a
+    // serial pass in level order, so the result does not depend on the number of threads.
     decisions.resize(level.size());
     tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t n) {
       const ElementId q = level[n];
@@ -129,19 +130,13 @@ bool Solver::shoot_once() {
           break;
       }
       decisions[n].go_on = go_on;
-    });
-    // Their effects on the values: each touches q and q's own children only, so the
-    // elements of a level are independent (in parallel); the lists and counters follow
-    // in level order.
-    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t n) {
-      const ElementId q = level[n];
-      if (decisions[n].go_on) {
+      if (go_on) {
         flush(q);  // the children must hold what earlier shots pushed down before they are shot
       } else {
         // The shot stops at q: q takes dB, and what is already below q gets it
         // interpolated from q's corners (push-down) instead of a transfer of its own.
-        value_[q] = decisions[n].in.cumulated;
-        push_down(q, decisions[n].in.current);
+        value_[q] = in.cumulated;
+        push_down(q, in.current);
       }
     });
     for (std::size_t n = 0; n < level.size(); ++n) {
@@ -163,11 +158,11 @@ bool Solver::shoot_once() {
       if (!refinement_allowed()) break;  // a limit: the shot stops at q (see below)
       const bool starts_split = !std::binary_search(complete_split.begin(), complete_split.end(), q);
       hierarchy_.refine(q);
-      initialise_new_elements();
       const Element& el = hierarchy_.element(q);
       if (refine_.method == Method::adaptive && starts_split && !el.is_leaf())
         complete_split_next.insert(complete_split_next.end(), el.children.begin(), el.children.end());
     }
+    initialise_new_elements();  // all of this level's new elements at once (values do not change in between)
     for (const auto& [q, current] : passed) {
       const Element& el = hierarchy_.element(q);
       if (gathered_in_[q] != report_.iterations + 1)

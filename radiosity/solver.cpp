@@ -5,6 +5,7 @@
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <unistd.h>
 
@@ -119,16 +120,24 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
 Solver::~Solver() = default;
 
 std::uint32_t Solver::brightest_patch() const {
-  std::uint32_t best = 0;
-  double best_power = -1;
-  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
-    const double power = magnitude(patches_[p].unshot) * patches_[p].area;
-    if (power > best_power) {
-      best = p;
-      best_power = power;
-    }
-  }
-  return best;
+  // The most unshot power, the lowest index among equals: the same for any split of
+  // the range, so the same for any number of threads.
+  struct Best {
+    double power = -1;
+    std::uint32_t patch = 0;
+  };
+  auto better = [](const Best& a, const Best& b) {
+    return a.power > b.power || (a.power == b.power && a.patch < b.patch) ? a : b;
+  };
+  return tbb::parallel_reduce(
+             tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(patches_.size()), 1024), Best{},
+             [&](const tbb::blocked_range<std::uint32_t>& range, Best best) {
+               for (std::uint32_t p = range.begin(); p != range.end(); ++p)
+                 best = better(best, Best{magnitude(patches_[p].unshot) * patches_[p].area, p});
+               return best;
+             },
+             better)
+      .patch;
 }
 
 std::size_t resident_memory() {
@@ -189,18 +198,21 @@ void Solver::receivers(std::uint32_t i, std::vector<ElementId>& roots) {
       if (OpenMesh::dot(plane_of.normal, c - plane_of.corners[0]) > 0) return true;
     return false;
   };
-  double skipped_share = 0;
-  for (std::uint32_t j = 0; j < patches_.size(); ++j) {
-    if (j == i) continue;
-    const Patch& receiver = patches_[j];
-    if (options_.cull) {
+  // Per patch, in parallel: kept (-1), culled exactly (-2), or the bound it was
+  // skipped for (>= 0). The roots and the sums follow in patch order.
+  std::vector<double>& verdict = cull_verdict_;
+  verdict.assign(patches_.size(), -1.0);
+  if (options_.cull) {
+    tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
+      if (j == i) return;
+      const Patch& receiver = patches_[j];
       // Exact: every point of the receiver is behind or on the sender's plane (the
       // sender sends nothing there), or the whole sender is behind or on the receiver's
       // plane (the receiver's hemisphere does not hold it). Both give F = 0 at every
       // point, which is what point_to_polygon would compute.
       if (!in_front(sender, receiver) || !in_front(receiver, sender)) {
-        ++report_.culled_receivers;
-        continue;
+        verdict[j] = -2.0;
+        return;
       }
       // Negligible: at any point x of the receiver, F(x -> sender) <= A_i / (pi d^2),
       // with d no more than the distance between the two patches, so the receiver's
@@ -208,15 +220,22 @@ void Solver::receivers(std::uint32_t i, std::vector<ElementId>& roots) {
       const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
       if (per_patch > 0 && d > 0) {
         const double bound = receiver.area / (M_PI * d * d);
-        if (bound < per_patch) {
-          skipped_share += bound;
-          ++report_.culled_receivers;
-          ++report_.negligible_receivers;
-          continue;
-        }
+        if (bound < per_patch) verdict[j] = bound;
       }
+    });
+  }
+  double skipped_share = 0;
+  for (std::uint32_t j = 0; j < patches_.size(); ++j) {
+    if (j == i) continue;
+    if (verdict[j] == -1.0) {
+      roots.push_back(hierarchy_.patch_root(j));
+      continue;
     }
-    roots.push_back(hierarchy_.patch_root(j));
+    ++report_.culled_receivers;
+    if (verdict[j] >= 0) {
+      skipped_share += verdict[j];
+      ++report_.negligible_receivers;
+    }
   }
   report_.negligible_share_max = std::max(report_.negligible_share_max, skipped_share);
 }
@@ -233,9 +252,12 @@ double Solver::lost_fraction(std::uint32_t id) {
   const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
   const Vec3d b = OpenMesh::cross(n, t);
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
-  Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id))};
-  int escaped = 0, back = 0;
-  for (int i = 0; i < side; ++i)
+  // One row of strata per task, each row with its own seed: the counts are the same
+  // for any number of threads.
+  std::vector<std::array<int, 2>> rows(static_cast<std::size_t>(side));
+  tbb::parallel_for(0, side, [&](int i) {
+    Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id) ^ mix(static_cast<std::uint64_t>(i) + 1))};
+    int escaped = 0, back = 0;
     for (int j = 0; j < side; ++j) {
       const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
       const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
@@ -245,6 +267,13 @@ double Solver::lost_fraction(std::uint32_t id) {
       escaped += hit == Visibility::Hit::nothing;
       back += hit == Visibility::Hit::back;
     }
+    rows[static_cast<std::size_t>(i)] = {escaped, back};
+  });
+  int escaped = 0, back = 0;
+  for (const auto& row : rows) {
+    escaped += row[0];
+    back += row[1];
+  }
   const double total = static_cast<double>(side) * side;
   p.escaped = escaped / total;
   p.lost = (escaped + back) / total;
@@ -490,16 +519,31 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uin
     scale = reachable / received;
     form_factor_error_sum_ += std::abs(1 - received / reachable);
   }
+  // Per receiving patch: a patch's terminal elements mostly come in runs (siblings have
+  // neighbouring ids), so the reach of a run is summed before it is booked.
   Rgb incident_total;
-  for (std::size_t t = 0; t < terminals.size(); ++t) {
-    if (reach[t] <= 0) continue;
-    Patch& receiver = patches_[hierarchy_.element(terminals[t]).patch];
-    const Rgb incident = shot_radiosity * (reach[t] * scale);
+  auto book = [&](std::uint32_t patch_id, double patch_reach) {
+    if (patch_reach <= 0) return;
+    Patch& receiver = patches_[patch_id];
+    const Rgb incident = shot_radiosity * (patch_reach * scale);
     const Rgb reflected = receiver.reflectance * incident;
     receiver.unshot += reflected * (1.0 / receiver.area);  // eq. 3: area-weighted pull-up
     report_.energy.absorbed += incident - reflected;
     incident_total += incident;
+  };
+  std::uint32_t run_patch = 0;
+  double run_reach = 0;
+  for (std::size_t t = 0; t < terminals.size(); ++t) {
+    if (reach[t] <= 0) continue;
+    const std::uint32_t patch_id = hierarchy_.element(terminals[t]).patch;
+    if (patch_id != run_patch) {
+      book(run_patch, run_reach);
+      run_patch = patch_id;
+      run_reach = 0;
+    }
+    run_reach += reach[t];
   }
+  book(run_patch, run_reach);
   // What no front face received: out of the scene, or onto black back faces. In a
   // closed scene only rounding is left; it is booked as absorbed.
   const Rgb not_received = shot_radiosity * sender.area - incident_total;

@@ -169,6 +169,7 @@ class Solver {
   }
   double emitted_total_ = 0;
   double unshot_magnitude_ = 0;  // sum over patches of |unshot| x area, all channels
+  std::vector<double> cull_verdict_;  // receivers(): per patch, kept for its buffer
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;
   SolveReport report_;

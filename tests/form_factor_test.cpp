@@ -127,5 +127,24 @@ TEST(Visibility, OccludersBlockAndOpenSpaceDoesNot) {
   EXPECT_EQ(vis.trace({1, 1, -0.5}, up, up), Visibility::Hit::back);  // the floor's underside
 }
 
+// The closed form's angle: std::atan2 to 1e-14 over every direction pair, including
+// the reduction boundaries, right angles and near-opposite directions.
+TEST(AngleBetween, MatchesAtan2) {
+  double worst = 0;
+  for (int i = 0; i <= 20000; ++i) {
+    const double phi = M_PI * i / 20000;
+    for (double scale : {1e-6, 1.0, 3e5}) {
+      const double y = scale * std::sin(phi), x = scale * std::cos(phi);
+      worst = std::max(worst, std::abs(angle_between(y, x) - std::atan2(y, x)));
+    }
+  }
+  for (double t : {0.19891236737965800691, 0.66817863791929891999, 1.0, 0.0}) {
+    worst = std::max(worst, std::abs(angle_between(t, 1.0) - std::atan2(t, 1.0)));
+    worst = std::max(worst, std::abs(angle_between(t, -1.0) - std::atan2(t, -1.0)));
+    worst = std::max(worst, std::abs(angle_between(1.0, t) - std::atan2(1.0, t)));
+  }
+  EXPECT_LT(worst, 1e-14);
+}
+
 }  // namespace
 }  // namespace dynrad::rad
