@@ -133,6 +133,40 @@ static void test_furnace(void) {
 /* A closed room lit by its ceiling, rho = 0.6 everywhere: sum of B x area over the
  * refined mesh = emitted power / (1 - rho). Checks positions, triangles and values
  * together. The same scene solved twice gives the same answer. */
+/* Ten shots of the furnace: without the ambient term the values are far too dark;
+ * with it their mean is close to E / (1 - rho) = 2. Overshooting gives the same answer
+ * at convergence. */
+static void test_ambient_and_overshoot(void) {
+  const uint32_t all[6] = {0, 0, 0, 0, 0, 0};
+  const dynrad_material glow = grey(0.5, 1.0, "glow");
+  Box box;
+  make_box(&box, 2, 1, 1, all);
+  dynrad_scene* scene = create_box(&box, &glow, 1);
+  double means[3] = {0, 0, 0};
+  for (int run = 0; run < 3; ++run) {
+    dynrad_options* options = options_with(0.3, run == 2 ? 1e-5 : 0);
+    if (run < 2) CHECK(dynrad_options_set_iterations(options, 10) == DYNRAD_OK, "%s", dynrad_last_error());
+    CHECK(dynrad_options_set_ambient(options, run == 1) == DYNRAD_OK, "%s", dynrad_last_error());
+    if (run == 2) CHECK(dynrad_options_set_overshoot(options, 1.3) == DYNRAD_OK, "%s", dynrad_last_error());
+    dynrad_result* result = NULL;
+    const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+    CHECK(s == DYNRAD_OK, "solve %d: %s: %s", run, dynrad_status_name(s), dynrad_last_error());
+    if (result) {
+      const size_t n = dynrad_result_vertex_count(result);
+      float* b = malloc(3 * n * sizeof(float));
+      CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
+      for (size_t v = 0; v < n; ++v) means[run] += b[3 * v + 1] / (double)n;
+      free(b);
+      dynrad_result_destroy(result);
+    }
+    dynrad_options_destroy(options);
+  }
+  CHECK(means[0] < 0.9 * 2.0, "10 shots without ambient: mean %g, expected well below 2", means[0]);
+  CHECK(fabs(means[1] - 2.0) < 0.05 * 2.0, "10 shots with ambient: mean %g, expected about 2", means[1]);
+  CHECK(fabs(means[2] - 2.0) < 0.01 * 2.0, "overshoot 1.3, converged: mean %g, expected 2", means[2]);
+  dynrad_scene_destroy(scene);
+}
+
 static void test_lit_room_energy(void) {
   const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
   const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling")};
@@ -324,6 +358,8 @@ static void test_errors(void) {
   expect_error(dynrad_options_set_oracle_threshold(options, "gradient", 0.1), DYNRAD_INVALID_ARGUMENT,
                "pushdown_error", "unknown threshold name");
   expect_error(dynrad_options_set_max_level(options, -1), DYNRAD_INVALID_ARGUMENT, "max_level", "level -1");
+  expect_error(dynrad_options_set_overshoot(options, 2.0), DYNRAD_INVALID_ARGUMENT, "between 0 and 2", "overshoot 2");
+  expect_error(dynrad_options_set_negligible_share(options, -1), DYNRAD_INVALID_ARGUMENT, "[0, 0.1]", "share -1");
   expect_error(dynrad_solve(NULL, options, NULL, NULL, NULL, NULL), DYNRAD_INVALID_ARGUMENT, "NULL", "NULL scene");
 
   /* After all those failures, a valid scene still works, and a short buffer is refused. */
@@ -352,6 +388,7 @@ static void test_errors(void) {
 int main(void) {
   test_version();
   test_furnace();
+  test_ambient_and_overshoot();
   test_lit_room_energy();
   test_stopping();
   test_errors();

@@ -441,6 +441,26 @@ dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t 
   return s;
 }
 
+dynrad_status dynrad_options_set_ambient(dynrad_options* options, int on) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->solve.ambient_display = on != 0;
+  return s;
+}
+
+dynrad_status dynrad_options_set_overshoot(dynrad_options* options, double overshoot) {
+  const dynrad_status s = set_option(options, std::isfinite(overshoot) && overshoot > 0 && overshoot < 2,
+                                     "dynrad_options_set_overshoot: must lie strictly between 0 and 2 (1: none).");
+  if (s == DYNRAD_OK) options->solve.overshoot = overshoot;
+  return s;
+}
+
+dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, double share) {
+  const dynrad_status s = set_option(options, std::isfinite(share) && share >= 0 && share <= 0.1,
+                                     "dynrad_options_set_negligible_share: must lie in [0, 0.1] (0: never skip).");
+  if (s == DYNRAD_OK) options->solve.negligible_share = share;
+  return s;
+}
+
 dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure) {
   const dynrad_status s = set_option(options, std::isfinite(exposure) && exposure >= 0,
                                      "dynrad_options_set_exposure: must be a finite number >= 0 (0: automatic).");

@@ -129,6 +129,16 @@ DYNRAD_API dynrad_status dynrad_options_set_oracle(dynrad_options* options, cons
 DYNRAD_API dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value);
 /* Stop refining once the element tree holds this many elements; 0 (default): no limit. */
 DYNRAD_API dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements);
+/* Add the ambient estimate of light not yet shot to the result's values (nonzero: on;
+ * default off): an early stop (a cancel, a time limit) then shows close to the converged
+ * picture. Output only; the solve is the same. */
+DYNRAD_API dynrad_status dynrad_options_set_ambient(dynrad_options* options, int on);
+/* Over-relax each shot by this factor, in (0, 2); 1 (default) is plain progressive
+ * refinement, 1.3 needs fewer shots for a given accuracy. */
+DYNRAD_API dynrad_status dynrad_options_set_overshoot(dynrad_options* options, double overshoot);
+/* Per shot, receivers whose bounded share of its power is below this over the patch
+ * count are skipped; in [0, 0.1], default 1e-4, 0 never. */
+DYNRAD_API dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, double share);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
  * command line (the 99th percentile of lit vertices maps to 0.9). */
 DYNRAD_API dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure);
