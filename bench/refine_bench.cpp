@@ -8,6 +8,7 @@
 // hierarchy, divided by the number of elements.
 //
 // Usage: bench_refine [samples/globillum_room.obj]
+#include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 
@@ -27,10 +28,7 @@ constexpr double kPatchSize = 0.09;
 constexpr int kRefinements = 100000;
 constexpr int kRepetitions = 5;
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using dynrad::bench::median;
 
 std::size_t heap_bytes() { return mallinfo2().uordblks; }
 

@@ -9,6 +9,7 @@
 // Usage: bench_scale MODEL.obj [shots for scaling (200)] [converge (0.01)] [repeats (3)]
 //   e.g. python3 samples/make_building.py /tmp/b100k.obj --cell 0.25
 //        build/bench/bench_scale /tmp/b100k.obj
+#include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/solver.h"
@@ -28,10 +29,7 @@ namespace {
 using namespace dynrad;
 using Clock = std::chrono::steady_clock;
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 struct Prepared {
   LoadedScene loaded;

@@ -11,6 +11,7 @@
 //
 // Usage: bench_throughput [model] [patch size] [method]
 //   (default: samples/globillum_room_obstructed.obj, 0.5, dynamic; to 1% unshot)
+#include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/solver.h"
@@ -31,10 +32,7 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 struct Setup {
   LoadedScene loaded;
