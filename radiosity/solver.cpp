@@ -273,20 +273,18 @@ double Solver::lost_fraction(std::uint32_t id) {
 }
 
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
-  // The receivers this level needs and this shot has not computed: a serial pass of
-  // array lookups, then the form factors in parallel, each into its own slot.
+  // Every corner of the level in parallel; the first task to stamp a receiver with
+  // this shot computes its form factor (a receiver is shared by the elements around its
+  // vertex). The value does not depend on which task computes it. The stamp is a GCC
+  // and Clang atomic built-in: std::atomic_ref needs C++20.
   const std::size_t shot = report_.iterations + 1;
-  std::vector<std::uint32_t> todo;
-  for (ElementId e : elements)
-    for (std::uint32_t r : corner_receiver_[e])
-      if (form_factor_shot_[r] != shot) {
-        form_factor_shot_[r] = shot;
-        todo.push_back(r);
-      }
-  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
-    const Receiver& r = receivers_[todo[n]];
-    CornerFormFactor& f = form_factor_[todo[n]];
-    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
+  tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t n) {
+    for (std::uint32_t id : corner_receiver_[elements[n]]) {
+      if (__atomic_exchange_n(&form_factor_shot_[id], shot, __ATOMIC_RELAXED) == shot) continue;
+      const Receiver& r = receivers_[id];
+      CornerFormFactor& f = form_factor_[id];
+      f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
+    }
   });
 }
 
