@@ -7,6 +7,7 @@
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/IO/reader/OFFReader.hh>
 
 #include <algorithm>
 #include <array>
@@ -636,6 +637,14 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
     // stream as if it were text.
     ok = OpenMesh::IO::IOManager().read(path, importer, options);
   } else {
+    if (ext == ".off") {
+      // OpenMesh's OFF reader is one object per process that takes its options (binary or
+      // not, colours, normals) from the last header it was shown; reading a stream does
+      // not show it this one. Without this, an ASCII file read after a binary one was
+      // parsed as binary (found by fuzzing). Showing it the file's own first line (the
+      // public check reads it from the path) sets them right.
+      OpenMesh::IO::OFFReader().can_u_read(path);
+    }
     std::istringstream stream(parsed);  // the text already in memory: no second read from disk
     ok = OpenMesh::IO::IOManager().read(stream, ext, importer, options);
   }

@@ -205,6 +205,27 @@ TEST(ImportOff, FaceColoursInPlainOffDoNotShiftTheNextFace) {
   EXPECT_NEAR(test::polygon_area(soup), 1.0, 1e-12);
 }
 
+// Found by fuzzing: OpenMesh's OFF reader is one object per process, and reading from a
+// stream kept the last file's "binary" flag, so an ASCII OFF read after a binary one was
+// parsed as binary (garbage counts, a loop of minutes). In one process, both in turn.
+TEST(ImportOff, AsciiAfterBinaryInOneProcess) {
+  TempDir dir;
+  std::string binary = "OFF BINARY\n";
+  auto put = [&](const auto& value) { binary.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  for (std::int32_t count : {3, 1, 0}) put(count);
+  for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(x);
+  for (std::int32_t i : {3, 0, 1, 2}) put(i);
+  const std::string ascii = "OFF\n# a comment\n4 1 0\n0 0 0\n2 0 0\n2 3 0\n0 3 0\n4 0 1 2 3\n";
+  for (int round = 0; round < 2; ++round) {
+    const PolygonSoup b = read_model(dir.write("b.off", binary));
+    ASSERT_EQ(b.polygons.size(), 1u);
+    EXPECT_NEAR(test::polygon_area(b), 0.5, 1e-12);
+    const PolygonSoup a = read_model(dir.write("a.off", ascii));
+    ASSERT_EQ(a.polygons.size(), 1u);
+    EXPECT_NEAR(test::polygon_area(a), 6.0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace dynrad
 
