@@ -84,7 +84,7 @@ bool Solver::shoot_once() {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
   };
-  receivers(i, level);  // every patch j but those that cannot (or hardly) receive
+  receiving_patches(i, level);  // every patch j but those that cannot (or hardly) receive
 
   while (!level.empty()) {
     compute_form_factors(level);  // in parallel, for every corner of this level

@@ -33,7 +33,7 @@ struct SolveOptions {
   // Cohen et al. 1988's) progressive refinement. Convergence is then measured on the
   // magnitude of unshot power.
   double overshoot = 1.0;
-  // Receiver culling, per shot, before any form factor or ray (see Solver::receivers):
+  // Receiver culling, per shot, before any form factor or ray (see Solver::receiving_patches):
   // patches that cannot exchange light with the sender (behind its plane, or with the
   // sender behind theirs) are skipped exactly; then patches whose unoccluded share of
   // the shot is bounded below negligible_share / (number of patches) are skipped too,

@@ -182,7 +182,7 @@ Rgb Solver::ambient() const {
              unshot.b / area * factor(mean_reflectance.b));
 }
 
-void Solver::receivers(std::uint32_t i, std::vector<ElementId>& roots) {
+void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
   const Patch& sender = patches_[i];
   const double per_patch = options_.negligible_share / static_cast<double>(patches_.size());
   auto in_front = [](const Patch& plane_of, const Patch& other) {

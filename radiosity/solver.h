@@ -93,7 +93,7 @@ class Solver {
   std::uint32_t brightest_patch() const;
   // The patches sender i's shot must visit: all others but those SolveOptions::cull
   // rules out. Appends their roots to `roots`; counts in the report.
-  void receivers(std::uint32_t i, std::vector<ElementId>& roots);
+  void receiving_patches(std::uint32_t i, std::vector<ElementId>& roots);
   // False once a limit of RefineSettings is reached; says so in the report, once.
   bool refinement_allowed();
   double lost_fraction(std::uint32_t patch);
@@ -169,7 +169,7 @@ class Solver {
   }
   double emitted_total_ = 0;
   double unshot_magnitude_ = 0;  // sum over patches of |unshot| x area, all channels
-  std::vector<double> cull_verdict_;  // receivers(): per patch, kept for its buffer
+  std::vector<double> cull_verdict_;  // receiving_patches(): per patch, kept for its buffer
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;
   SolveReport report_;
