@@ -591,6 +591,16 @@ void normalise_ascii_off(const std::string& path, std::string& parsed, const std
                        "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
                            std::to_string(indices) + ". The file is damaged.");
     }
+    // OpenMesh reads each index as far as it parses ("2-4" gives 2, and "-4" becomes the
+    // next face's corner count, four billion): every index must be a plain whole number.
+    for (std::uint64_t k = 0; k < n; ++k) {
+      std::string index;
+      words >> index;
+      if (index.empty() || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        throw InputError(path, line_no,
+                         "face " + std::to_string(f) + ": corner " + std::to_string(k) + " is '" + index +
+                             "', not a vertex number. The file is damaged.");
+    }
     if (!face_rest_read) std::fill(parsed.begin() + static_cast<std::ptrdiff_t>(last),
                                    parsed.begin() + static_cast<std::ptrdiff_t>(end), ' ');
   }

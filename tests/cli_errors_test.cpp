@@ -166,6 +166,10 @@ TEST(BadInput, ShortOffVertexLinesAreRefusedNamingTheLine) {
                  {"short.off:4", "vertex 1 must hold 3 numbers"});
   expect_refused(dir, dir.write("normals.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n"),
                  {"normals.off:4", "vertex 1 must hold 6 numbers"});
+  // Also found by fuzzing: OpenMesh read the index "2-4" as 2, then "-4" as the next
+  // face's corner count (four billion).
+  expect_refused(dir, dir.write("dash.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2-4\n3 0 2 3\n"),
+                 {"dash.off:7", "corner 2 is '2-4'"});
 }
 
 // Found by fuzzing: OpenMesh takes the whole first line as the keyword and the next
