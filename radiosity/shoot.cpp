@@ -46,7 +46,9 @@
 // patch_element_transfers counts those below patch level.
 #include "radiosity/solver.h"
 
-#include <tbb/parallel_for.h>
+#include "radiosity/parallel.h"
+
+#include <tbb/task_group.h>
 
 #include <algorithm>
 
@@ -64,12 +66,14 @@ bool Solver::shoot_once() {
   sender_ = i;
   current_shot_ = shot;
   sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
+  report_.energy.unshot += shot * (-sender.area);
   // (sender.shot grows only after this shot's walk: elements created during the walk
   // gather the shots before this one and then receive this one like the rest.)
 
   const int max_generation = 2 * refine_.max_level;
   const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
+  std::vector<ElementId> ready;  // existing elements of the next level
   std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // visited, the shot goes on below
   // Adaptive: children of a leaf the oracle split in this shot; the walk splits them
   // again to complete the 1 -> 4 split. (Dynamic needs no marks: it reaches odd
@@ -78,7 +82,9 @@ bool Solver::shoot_once() {
   struct Decision {
     OracleInputs in;
     bool go_on = false;
+    double reach = 0;  // where the shot stops: see element_reach()
   };
+  std::vector<double> reach;  // per terminal
   std::vector<Decision> decisions;
   auto count_transfer = [this](const Element& el) {
     ++report_.energy_transfers;
@@ -87,20 +93,22 @@ bool Solver::shoot_once() {
   receiving_patches(i, level);  // every patch j but those that cannot (or hardly) receive
 
   while (!level.empty()) {
-    compute_form_factors(level);  // in parallel, for every corner of this level
     next.clear();
     subdivide.clear();
     passed.clear();
     complete_split_next.clear();
     // shoot(i, q), the oracle and the effect on the values, for every q of this level
     // in parallel: each reads and writes only q and q's own children (the next level),
-    // so the elements of a level are independent. The lists and counters follow in a
-    // serial pass in level order, so the result does not depend on the number of threads.
+    // so the elements of a level are independent (the form factors at q's corners are
+    // shared with its neighbours; see compute_corner_form_factors). The lists and
+    // counters follow in a serial pass in level order, so the result does not depend on
+    // the number of threads.
     decisions.resize(level.size());
-    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t n) {
+    parallel_for_index(level.size(), 16, [&](std::size_t n) {
       const ElementId q = level[n];
       const Element& el = hierarchy_.element(q);
       const Patch& patch = patches_[el.patch];
+      compute_corner_form_factors(q);  // most are known already (see below)
       OracleInputs& in = decisions[n].in;
       in = OracleInputs{};
       // An element gathered during this shot already holds this shot's transfer.
@@ -111,8 +119,11 @@ bool Solver::shoot_once() {
       }
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
+      // The push-down error costs three closed forms; it is estimated only where the
+      // oracle's first condition (the cumulated gradient) holds and it can decide.
       if (refine_.method == Method::dynamic && can_split && !odd &&
-          refine_.dynamic.variant == OracleThresholds::Variant::pushdown) {
+          refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
+          cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient) {
         estimate_pushdown_error(q, patch.reflectance, in);
         in.ambient = (patch.reflectance * ambient_now).luminance();
       }
@@ -137,8 +148,10 @@ bool Solver::shoot_once() {
         // interpolated from q's corners (push-down) instead of a transfer of its own.
         value_[q] = in.cumulated;
         push_down(q, in.current);
+        decisions[n].reach = element_reach(q);
       }
     });
+    ready.clear();
     for (std::size_t n = 0; n < level.size(); ++n) {
       const ElementId q = level[n];
       const Element& el = hierarchy_.element(q);
@@ -146,22 +159,37 @@ bool Solver::shoot_once() {
         // dynamic: a whole paper level the shot passes through
         if (refine_.method == Method::dynamic && el.generation % 2 == 0) count_transfer(el);
         passed.emplace_back(q, decisions[n].in.current);
-        if (el.is_leaf()) subdivide.push_back(q);
+        if (el.is_leaf())
+          subdivide.push_back(q);
+        else
+          ready.insert(ready.end(), el.children.begin(), el.children.end());
       } else {
         terminals.push_back(q);
+        reach.push_back(decisions[n].reach);
         count_transfer(el);
       }
     }
     // subdivide(q). New elements start from their parent's values before this shot
     // (dB is added to the parent below) and receive the shot at the next level.
-    for (ElementId q : subdivide) {
-      if (!refinement_allowed()) break;  // a limit: the shot stops at q (see below)
-      const bool starts_split = !std::binary_search(complete_split.begin(), complete_split.end(), q);
-      hierarchy_.refine(q);
-      const Element& el = hierarchy_.element(q);
-      if (refine_.method == Method::adaptive && starts_split && !el.is_leaf())
-        complete_split_next.insert(complete_split_next.end(), el.children.begin(), el.children.end());
+    // Refining the mesh is serial; meanwhile the other threads compute the form factors
+    // of the next level's elements that exist already (that work reads no mesh data and
+    // nothing refine() changes; the new elements are numbered only after the join).
+    tbb::task_group overlap;
+    if (!ready.empty() && !subdivide.empty()) overlap.run([&] { compute_form_factors(ready); });
+    try {
+      for (ElementId q : subdivide) {
+        if (!refinement_allowed()) break;  // a limit: the shot stops at q (see below)
+        const bool starts_split = !std::binary_search(complete_split.begin(), complete_split.end(), q);
+        hierarchy_.refine(q);
+        const Element& el = hierarchy_.element(q);
+        if (refine_.method == Method::adaptive && starts_split && !el.is_leaf())
+          complete_split_next.insert(complete_split_next.end(), el.children.begin(), el.children.end());
+      }
+    } catch (...) {
+      overlap.wait();
+      throw;
     }
+    overlap.wait();
     initialise_new_elements();  // all of this level's new elements at once (values do not change in between)
     for (const auto& [q, current] : passed) {
       const Element& el = hierarchy_.element(q);
@@ -169,6 +197,7 @@ bool Solver::shoot_once() {
         for (int k = 0; k < 3; ++k) value_[q][k] += current[k];
       if (el.is_leaf()) {  // the split was refused (minimum area): the shot stops here
         terminals.push_back(q);
+        reach.push_back(element_reach(q));
         count_transfer(el);
       } else {
         next.insert(next.end(), el.children.begin(), el.children.end());
@@ -179,7 +208,7 @@ bool Solver::shoot_once() {
     std::sort(complete_split_next.begin(), complete_split_next.end());
     complete_split.swap(complete_split_next);
   }
-  account_transfers(terminals, i, shot);
+  account_transfers(terminals, reach, i, shot);
   patches_[i].shot += shot;
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());

@@ -2,9 +2,9 @@
 #include "radiosity/solver.h"
 
 #include "radiosity/form_factor.h"
+#include "radiosity/parallel.h"
 
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <unistd.h>
 
@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <map>
 #include <stdexcept>
+#include <thread>
 #include <unordered_map>
 
 namespace dynrad::rad {
@@ -88,6 +89,8 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     patch.emission = m.emission;
     patch.unshot = m.emission;
     report_.energy.emitted += m.emission * patch.area;
+    total_area_ += patch.area;
+    reflectance_area_ += patch.reflectance * patch.area;
   }
   emitted_total_ = sum(report_.energy.emitted);
   unshot_magnitude_ = emitted_total_;
@@ -101,7 +104,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
                                      std::llround(patch.normal[2] * 1e9)};
     patch.plane = planes.emplace(k, static_cast<std::uint32_t>(planes.size())).first->second;
   }
-  report_.energy.unshot = report_.energy.emitted;
+  survey_patches();
   // Every existing element starts at its patch's emission.
   value_.resize(hierarchy_.element_count());
   for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
@@ -118,18 +121,25 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
 
 Solver::~Solver() = default;
 
-std::uint32_t Solver::brightest_patch() const {
-  // A serial pass: a parallel reduction was slower here (tens of thousands of patches).
+void Solver::survey_patches() {
+  // A serial pass (a parallel reduction was slower here, at tens of thousands of
+  // patches), in patch order: the same sums for any number of threads.
+  Rgb unshot;
+  double unshot_magnitude = 0, best_power = -1;
   std::uint32_t best = 0;
-  double best_power = -1;
   for (std::uint32_t p = 0; p < patches_.size(); ++p) {
-    const double power = magnitude(patches_[p].unshot) * patches_[p].area;
+    const Patch& patch = patches_[p];
+    unshot += patch.unshot * patch.area;
+    const double power = magnitude(patch.unshot) * patch.area;
+    unshot_magnitude += power;
     if (power > best_power) {
       best = p;
       best_power = power;
     }
   }
-  return best;
+  report_.energy.unshot = unshot;
+  unshot_magnitude_ = unshot_magnitude;
+  brightest_ = best;
 }
 
 std::size_t resident_memory() {
@@ -168,15 +178,10 @@ bool Solver::refinement_allowed() {
 }
 
 Rgb Solver::ambient() const {
-  Rgb unshot, reflected;
-  double area = 0;
-  for (const Patch& p : patches_) {
-    unshot += p.unshot * p.area;
-    reflected += p.reflectance * p.area;
-    area += p.area;
-  }
+  const Rgb unshot = report_.energy.unshot;  // kept current by survey_patches() and shoot_once()
+  const double area = total_area_;
   if (!(area > 0)) return Rgb();
-  const Rgb mean_reflectance = reflected * (1.0 / area);
+  const Rgb mean_reflectance = reflectance_area_ * (1.0 / area);
   auto factor = [](double rho) { return rho < 1 ? 1 / (1 - rho) : 0.0; };
   return Rgb(unshot.r / area * factor(mean_reflectance.r), unshot.g / area * factor(mean_reflectance.g),
              unshot.b / area * factor(mean_reflectance.b));
@@ -192,11 +197,13 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
   };
   // Per patch, in parallel: kept (-1), culled exactly (-2), or the bound it was
   // skipped for (>= 0). The roots and the sums follow in patch order.
+  // The form factors at the corners of every kept patch are computed in the same pass
+  // (the walk's first level), which saves a parallel region per shot.
   std::vector<double>& verdict = cull_verdict_;
   verdict.assign(patches_.size(), -1.0);
-  if (options_.cull) {
-    tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
-      if (j == i) return;
+  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
+    if (j == i) return;
+    if (options_.cull) {
       const Patch& receiver = patches_[j];
       // Exact: every point of the receiver is behind or on the sender's plane (the
       // sender sends nothing there), or the whole sender is behind or on the receiver's
@@ -212,10 +219,14 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
       const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
       if (per_patch > 0 && d > 0) {
         const double bound = receiver.area / (M_PI * d * d);
-        if (bound < per_patch) verdict[j] = bound;
+        if (bound < per_patch) {
+          verdict[j] = bound;
+          return;
+        }
       }
-    });
-  }
+    }
+    compute_corner_form_factors(hierarchy_.patch_root(j));
+  });
   double skipped_share = 0;
   for (std::uint32_t j = 0; j < patches_.size(); ++j) {
     if (j == i) continue;
@@ -273,19 +284,37 @@ double Solver::lost_fraction(std::uint32_t id) {
 }
 
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
-  // Every corner of the level in parallel; the first task to stamp a receiver with
-  // this shot computes its form factor (a receiver is shared by the elements around its
-  // vertex). The value does not depend on which task computes it. The stamp is a GCC
-  // and Clang atomic built-in: std::atomic_ref needs C++20.
-  const std::size_t shot = report_.iterations + 1;
-  tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t n) {
-    for (std::uint32_t id : corner_receiver_[elements[n]]) {
-      if (__atomic_exchange_n(&form_factor_shot_[id], shot, __ATOMIC_RELAXED) == shot) continue;
-      const Receiver& r = receivers_[id];
-      CornerFormFactor& f = form_factor_[id];
-      f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
+  parallel_for_index(elements.size(), 8, [&](std::size_t n) { compute_corner_form_factors(elements[n]); });
+}
+
+// A receiver is shared by the elements around its vertex, and elements are handled in
+// parallel. Its stamp says, for this shot s, claimed (2s) or done (2s + 1): the first
+// task to claim it computes it, and a task that finds it claimed by another waits for
+// it (the other task is computing it and waits for nothing, so this always ends). The
+// value does not depend on which task computes it. The stamps use GCC and Clang atomic
+// built-ins: std::atomic_ref needs C++20.
+void Solver::compute_corner_form_factors(ElementId e) {
+  const std::uint64_t claimed = 2 * (report_.iterations + 1), done = claimed + 1;
+  bool wait = false;
+  for (std::uint32_t id : corner_receiver_[e]) {
+    std::uint64_t* stamp = &form_factor_shot_[id];
+    std::uint64_t seen = __atomic_load_n(stamp, __ATOMIC_ACQUIRE);
+    if (seen >= claimed) {
+      wait = wait || seen != done;
+      continue;
     }
-  });
+    if (!__atomic_compare_exchange_n(stamp, &seen, claimed, false, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+      wait = wait || seen != done;  // another task claimed it just now
+      continue;
+    }
+    const Receiver& r = receivers_[id];
+    CornerFormFactor& f = form_factor_[id];
+    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
+    __atomic_store_n(stamp, done, __ATOMIC_RELEASE);
+  }
+  if (!wait) return;
+  for (std::uint32_t id : corner_receiver_[e])
+    while (__atomic_load_n(&form_factor_shot_[id], __ATOMIC_ACQUIRE) != done) std::this_thread::yield();
 }
 
 void Solver::register_receivers(ElementId first) {
@@ -390,6 +419,10 @@ double Solver::element_form_factor(ElementId q) const {
   return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
 }
 
+double Solver::element_reach(ElementId q) const {
+  return element_form_factor(q) * hierarchy_.element(q).area;
+}
+
 void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const {
   const Element& el = hierarchy_.element(q);
   const Patch& sender = patches_[sender_];
@@ -442,18 +475,24 @@ void Solver::initialise_new_elements() {
     initialised_ = count;
     return;
   }
-  // Parents come before their children, so one pass in id order suffices.
-  for (ElementId e = static_cast<ElementId>(initialised_); e < count; ++e) {
+  // In parallel. A new element's parent may be new too (a 1 -> 4 split bisects twice),
+  // so each takes its values from its nearest ancestor that already had values: the
+  // same as going through the new parents, since both rules reproduce a linear (or
+  // constant) function on the flat ancestor.
+  const ElementId first = static_cast<ElementId>(initialised_);
+  parallel_for_index(count - first, 1024, [&](std::size_t n) {
+    const ElementId e = first + static_cast<ElementId>(n);
     const Element& el = hierarchy_.element(e);
+    ElementId source = el.parent;
+    while (source >= first) source = hierarchy_.element(source).parent;
+    const auto& p = value_[source];
     if (refine_.new_elements == RefineSettings::NewElements::constant) {
-      const auto& p = value_[el.parent];
       const Rgb mean = (p[0] + p[1] + p[2]) * (1.0 / 3);
       value_[e] = {mean, mean, mean};
     } else {
-      for (int k = 0; k < 3; ++k)
-        value_[e][k] = interpolate(el.parent, value_[el.parent], hierarchy_.position(el.corners[k]));
+      for (int k = 0; k < 3; ++k) value_[e][k] = interpolate(source, p, hierarchy_.position(el.corners[k]));
     }
-  }
+  });
   initialised_ = count;
 }
 
@@ -491,18 +530,12 @@ void Solver::flush_all() {
 
 // Energy of one shot, from the elements where it stopped. See shoot.cpp for why the
 // element powers are normalised.
-void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uint32_t sender_id,
-                               const Rgb& shot_radiosity) {
+void Solver::account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
+                               std::uint32_t sender_id, const Rgb& shot_radiosity) {
   Patch& sender = patches_[sender_id];
   const double lost = lost_fraction(sender_id);
-  std::vector<double> reach(terminals.size());
   double received = 0;
-  // One closed form per element (at its centroid): in parallel, then summed in order so
-  // that the total does not depend on the number of threads.
-  tbb::parallel_for(std::size_t(0), terminals.size(), [&](std::size_t t) {
-    reach[t] = element_form_factor(terminals[t]) * hierarchy_.element(terminals[t]).area;
-  });
-  for (double r : reach) received += r;
+  for (double r : reach) received += r;  // in order: the same total for any number of threads
   const double reachable = sender.area * (1 - lost);
   double scale = 0;
   if (received > 0 && reachable > 0) {
@@ -540,14 +573,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, std::uin
   const double escaped_share = lost > 0 ? sender.escaped / lost : 0.0;
   report_.energy.escaped += not_received * escaped_share;
   report_.energy.absorbed += not_received * (1 - escaped_share);
-  Rgb unshot;
-  double unshot_magnitude = 0;
-  for (const Patch& p : patches_) {
-    unshot += p.unshot * p.area;
-    unshot_magnitude += magnitude(p.unshot) * p.area;
-  }
-  report_.energy.unshot = unshot;
-  unshot_magnitude_ = unshot_magnitude;
+  survey_patches();
 }
 
 Solver::Output Solver::output(bool ambient_display) {

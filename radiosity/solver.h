@@ -13,6 +13,7 @@
 
 #include "mesh/refinement.h"
 #include "mesh/vertex_split.h"
+#include "radiosity/grow_array.h"
 #include "radiosity/oracle.h"
 #include "radiosity/solve_types.h"
 #include "radiosity/vertex_plane_map.h"
@@ -79,10 +80,12 @@ class Solver {
 
  private:
   struct Patch {
+    // area and unshot first: the survey after each shot reads only these
+    double area = 0;
+    Rgb unshot;
     std::array<Vec3d, 3> corners;
     Vec3d normal;
-    double area = 0;
-    Rgb reflectance, emission, unshot;
+    Rgb reflectance, emission;
     Rgb shot;  // radiosity shot so far, in total
     double lost = -1, escaped = 0;  // see lost_fraction()
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
@@ -90,9 +93,14 @@ class Solver {
     double radius = 0;
   };
 
-  std::uint32_t brightest_patch() const;
+  std::uint32_t brightest_patch() const { return brightest_; }
+  // One pass over the patches after each shot (and before the first): the unshot totals
+  // and the brightest patch, which the next shot sends from.
+  void survey_patches();
   // The patches sender i's shot must visit: all others but those SolveOptions::cull
   // rules out. Appends their roots to `roots`; counts in the report.
+  // The form factors at their roots' corners are computed on the way (the walk's first
+  // level), so that the sender's first level costs no parallel region of its own.
   void receiving_patches(std::uint32_t i, std::vector<ElementId>& roots);
   // False once a limit of RefineSettings is reached; says so in the report, once.
   bool refinement_allowed();
@@ -100,6 +108,8 @@ class Solver {
   // Form factors at the corners of `elements` for the current sender, computed in
   // parallel for every receiver not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
+  // One element's: on return, all three are known (see solver.cpp).
+  void compute_corner_form_factors(ElementId e);
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
   // elements appear (in id order: the same for any thread count), for elements from
@@ -133,7 +143,13 @@ class Solver {
   void flush(ElementId q);
   void flush_all();
   Rgb interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const;
-  void account_transfers(const std::vector<ElementId>& terminals, std::uint32_t sender, const Rgb& shot_radiosity);
+  // A_q times the mean form factor over q: the share of the sender's power (per unit
+  // of its area) that q would receive, before account_transfers() normalises it.
+  double element_reach(ElementId q) const;
+  // `reach` holds element_reach() of each terminal element, computed where the walk
+  // stopped.
+  void account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
+                         std::uint32_t sender, const Rgb& shot_radiosity);
 
   SceneMesh& scene_;
   ElementHierarchy& hierarchy_;
@@ -141,9 +157,10 @@ class Solver {
   RefineSettings refine_;
   std::unique_ptr<Visibility> visibility_;
   std::vector<Patch> patches_;
-  std::vector<std::array<Rgb, 3>> value_;    // per element: cumulated radiosity at its corners
-  std::vector<std::array<Rgb, 3>> pending_;  // per element: push-down not yet handed to children
-  std::vector<std::size_t> gathered_in_;     // per element: shot whose transfer its gather included (+1)
+  // Per element (GrowArray: see grow_array.h).
+  GrowArray<std::array<Rgb, 3>> value_;    // cumulated radiosity at its corners
+  GrowArray<std::array<Rgb, 3>> pending_;  // push-down not yet handed to children
+  GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
   std::size_t initialised_ = 0;            // elements with values
   // This shot: sender and form factors by (vertex, patch).
   std::uint32_t sender_ = 0;
@@ -161,13 +178,16 @@ class Solver {
   };
   VertexPlaneMap<std::uint32_t> receiver_id_;                // (vertex, facing) -> receiver
   std::vector<Receiver> receivers_;
-  std::vector<std::array<std::uint32_t, 3>> corner_receiver_;  // per element corner
-  std::vector<CornerFormFactor> form_factor_;                 // per receiver, this shot's...
-  std::vector<std::size_t> form_factor_shot_;                 // ...when this equals iterations + 1
+  GrowArray<std::array<std::uint32_t, 3>> corner_receiver_;  // per element corner
+  GrowArray<CornerFormFactor> form_factor_;                  // per receiver, this shot's...
+  GrowArray<std::uint64_t> form_factor_shot_;  // ...when this is 2 (iterations + 1) + 1 (see solver.cpp)
   const CornerFormFactor& corner_form_factor(ElementId e, int corner) const {
     return form_factor_[corner_receiver_[e][corner]];
   }
   double emitted_total_ = 0;
+  std::uint32_t brightest_ = 0;  // see survey_patches()
+  double total_area_ = 0;
+  Rgb reflectance_area_;  // sum over patches of reflectance x area
   double unshot_magnitude_ = 0;  // sum over patches of |unshot| x area, all channels
   std::vector<double> cull_verdict_;  // receiving_patches(): per patch, kept for its buffer
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory

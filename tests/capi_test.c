@@ -167,6 +167,56 @@ static void test_ambient_and_overshoot(void) {
   dynrad_scene_destroy(scene);
 }
 
+/* A furnace box (every face glows 1, reflects 0.5: B = 2 everywhere) whose floor is a
+ * 2 x 2 grid of coplanar quads. Simplification (the default) merges the grid; off, every
+ * quad is kept. Both answer 2. */
+static void test_simplify(void) {
+  double positions[(8 + 5) * 3];
+  for (int i = 0; i < 8; ++i) {
+    positions[3 * i + 0] = (i & 1) ? 2 : 0;
+    positions[3 * i + 1] = (i & 2) ? 2 : 0;
+    positions[3 * i + 2] = (i & 4) ? 2 : 0;
+  }
+  /* floor midpoints 8..11 (x = 1 edges, y = 1 edges) and centre 12, all at z = 0 */
+  const double extra[5][3] = {{1, 0, 0}, {0, 1, 0}, {2, 1, 0}, {1, 2, 0}, {1, 1, 0}};
+  for (int i = 0; i < 5; ++i)
+    for (int c = 0; c < 3; ++c) positions[3 * (8 + i) + c] = extra[i][c];
+  /* walls and ceiling as in make_box, then the floor (facing +z) as four quads */
+  const uint32_t indices[] = {0, 2, 6, 4, 1, 5, 7, 3, 0, 4, 5, 1, 2, 3, 7, 6, 4, 6, 7, 5,
+                              0, 8, 12, 9, 8, 1, 10, 12, 9, 12, 11, 2, 12, 10, 3, 11};
+  const uint32_t sizes[9] = {4, 4, 4, 4, 4, 4, 4, 4, 4};
+  const uint32_t materials[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const dynrad_material glow = grey(0.5, 1.0, "glow");
+  dynrad_scene* scene = NULL;
+  dynrad_status s = dynrad_scene_create(positions, 13, indices, sizes, 9, materials, &glow, 1, &scene);
+  CHECK(s == DYNRAD_OK, "dynrad_scene_create: %s: %s", dynrad_status_name(s), dynrad_last_error());
+  if (!scene) return;
+  size_t triangles[2] = {0, 0};
+  for (int run = 0; run < 2; ++run) {
+    dynrad_options* options = options_with(10, 1e-4); /* patches as large as the faces */
+    CHECK(dynrad_options_set_simplify(options, run == 0) == DYNRAD_OK, "%s", dynrad_last_error());
+    dynrad_result* result = NULL;
+    s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+    CHECK(s == DYNRAD_OK, "solve (simplify %d): %s: %s", run == 0, dynrad_status_name(s), dynrad_last_error());
+    if (result) {
+      triangles[run] = dynrad_result_triangle_count(result);
+      const size_t n = dynrad_result_vertex_count(result);
+      float* b = malloc(3 * n * sizeof(float));
+      CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
+      for (size_t v = 0; v < 3 * n; ++v)
+        CHECK(fabs(b[v] - 2.0) < 0.02 * 2.0, "simplify %d: value %g at vertex %zu, expected 2", run == 0, b[v], v / 3);
+      free(b);
+      dynrad_result_destroy(result);
+    }
+    dynrad_options_destroy(options);
+  }
+  /* kept, the floor's quads (and the walls' edges split where they meet them) stay */
+  CHECK(triangles[0] > 0 && triangles[0] < triangles[1], "triangles: %zu simplified, %zu not", triangles[0],
+        triangles[1]);
+  printf("simplify: %zu triangles merged, %zu kept\n", triangles[0], triangles[1]);
+  dynrad_scene_destroy(scene);
+}
+
 static void test_lit_room_energy(void) {
   const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
   const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling")};
@@ -389,6 +439,7 @@ int main(void) {
   test_version();
   test_furnace();
   test_ambient_and_overshoot();
+  test_simplify();
   test_lit_room_energy();
   test_stopping();
   test_errors();

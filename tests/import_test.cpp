@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 namespace dynrad {
@@ -226,6 +228,43 @@ TEST(ImportOff, AsciiAfterBinaryInOneProcess) {
   }
 }
 
+// OpenMesh's PLY reader is one object per process too. The same check for it: binary
+// (both byte orders, with and without face colours) and ASCII files read in turn, each
+// parsed by its own header.
+TEST(ImportPly, FormatsInTurnInOneProcess) {
+  TempDir dir;
+  auto binary = [](bool big_endian, bool colours) {
+    std::string text = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                       " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                       "element face 1\nproperty list uchar int vertex_indices\n" +
+                       (colours ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "") +
+                       "end_header\n";
+    auto put = [&](const auto& value) {
+      std::string bytes(reinterpret_cast<const char*>(&value), sizeof value);
+      if (big_endian) std::reverse(bytes.begin(), bytes.end());
+      text += bytes;
+    };
+    for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(x);
+    put(std::uint8_t{3});
+    for (std::int32_t i : {0, 1, 2}) put(i);
+    if (colours)
+      for (std::uint8_t c : {std::uint8_t{200}, std::uint8_t{100}, std::uint8_t{50}}) put(c);
+    return text;
+  };
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n2 0 0\n2 3 0\n0 3 0\n4 0 1 2 3\n";
+  for (int round = 0; round < 2; ++round)
+    for (bool big : {false, true})
+      for (bool colours : {true, false}) {
+        const PolygonSoup b = read_model(dir.write("b.ply", binary(big, colours)));
+        ASSERT_EQ(b.polygons.size(), 1u) << "big endian " << big << ", colours " << colours;
+        EXPECT_NEAR(test::polygon_area(b), 0.5, 1e-12);
+        const PolygonSoup a = read_model(dir.write("a.ply", ascii));
+        ASSERT_EQ(a.polygons.size(), 1u);
+        EXPECT_NEAR(test::polygon_area(a), 6.0, 1e-12);
+      }
+}
+
 }  // namespace
 }  // namespace dynrad
-

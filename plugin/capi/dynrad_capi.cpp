@@ -34,6 +34,7 @@ struct dynrad_options {
   dynrad::rad::RefineSettings refine;
   double patch_size = 0;  // 0: default for the scene
   double exposure = 0;    // 0: automatic
+  bool simplify = true;   // merge flat regions before patching, as `dynrad solve`
 };
 
 struct dynrad_result {
@@ -159,11 +160,11 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
   return soup;
 }
 
-std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup) {
+std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup, bool merge_flat_regions = true) {
   // Flat regions merged before patching, as `dynrad solve` does by default, so that
   // both give one answer (mesh/simplify.h; the result is a new mesh either way).
   SimplifyOptions simplify;
-  simplify.enabled = true;
+  simplify.enabled = merge_flat_regions;
   LoadedScene loaded = load_soup(soup, kInputLabel, {}, simplify);
   if (!(loaded.mesh->emitting_area() > 0))
     fail(DYNRAD_NO_EMITTER,
@@ -181,11 +182,11 @@ dynrad_stop_reason stop_reason(const std::string& stopped_by) {
 dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress, void* user,
                      const volatile int* cancel) {
   std::unique_ptr<SceneMesh> mesh;
-  {
+  if (options.simplify) {  // the mesh dynrad_scene_create built is simplified
     std::lock_guard<std::mutex> lock(scene.mutex);
     mesh = std::move(scene.unused_mesh);
   }
-  if (!mesh) mesh = build_mesh(scene.soup);
+  if (!mesh) mesh = build_mesh(scene.soup, options.simplify);
 
   // As `dynrad solve` does (plugin/cli/cmd_solve.cpp), so that both give one answer.
   const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(*mesh);
@@ -458,6 +459,12 @@ dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, doubl
   const dynrad_status s = set_option(options, std::isfinite(share) && share >= 0 && share <= 0.1,
                                      "dynrad_options_set_negligible_share: must lie in [0, 0.1] (0: never skip).");
   if (s == DYNRAD_OK) options->solve.negligible_share = share;
+  return s;
+}
+
+dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->simplify = on != 0;
   return s;
 }
 

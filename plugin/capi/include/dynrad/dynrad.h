@@ -139,6 +139,10 @@ DYNRAD_API dynrad_status dynrad_options_set_overshoot(dynrad_options* options, d
 /* Per shot, receivers whose bounded share of its power is below this over the patch
  * count are skipped; in [0, 0.1], default 1e-4, 0 never. */
 DYNRAD_API dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, double share);
+/* Merge the triangles of flat regions before patching (nonzero: on, the default, as
+ * `dynrad solve`; 0: keep every triangle, as `--no-simplify`). Lossless for the light;
+ * the result's mesh is a refinement of the merged one. */
+DYNRAD_API dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
  * command line (the 99th percentile of lit vertices maps to 0.9). */
 DYNRAD_API dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure);
