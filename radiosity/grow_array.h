@@ -50,6 +50,11 @@ class GrowArray {
     for (std::size_t i = size_; i < count; ++i) data_[i] = fill;
     size_ = count;
   }
+  // New values are left unset, for the caller to write (in parallel, say) before any read.
+  void resize_for_overwrite(std::size_t count) {
+    if (count > capacity_) grow(count);
+    size_ = count;
+  }
   void assign(std::size_t count, const T& fill) {
     size_ = 0;
     resize(count, fill);

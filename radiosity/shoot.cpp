@@ -203,7 +203,7 @@ bool Solver::shoot_once() {
         next.insert(next.end(), el.children.begin(), el.children.end());
       }
     }
-    std::sort(next.begin(), next.end());
+    // (no sort: `next` is built in level order, the same for any number of threads)
     level.swap(next);
     std::sort(complete_split_next.begin(), complete_split_next.end());
     complete_split.swap(complete_split_next);

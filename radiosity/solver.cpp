@@ -4,7 +4,9 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/parallel.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
 
 #include <unistd.h>
 
@@ -122,24 +124,40 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
 Solver::~Solver() = default;
 
 void Solver::survey_patches() {
-  // A serial pass (a parallel reduction was slower here, at tens of thousands of
-  // patches), in patch order: the same sums for any number of threads.
-  Rgb unshot;
-  double unshot_magnitude = 0, best_power = -1;
-  std::uint32_t best = 0;
-  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
-    const Patch& patch = patches_[p];
-    unshot += patch.unshot * patch.area;
-    const double power = magnitude(patch.unshot) * patch.area;
-    unshot_magnitude += power;
-    if (power > best_power) {
-      best = p;
-      best_power = power;
-    }
-  }
-  report_.energy.unshot = unshot;
-  unshot_magnitude_ = unshot_magnitude;
-  brightest_ = best;
+  // A deterministic reduction: the same blocks, joined in the same order, for any
+  // number of threads, so the sums are too. Ties go to the lower patch index.
+  struct Survey {
+    Rgb unshot;
+    double magnitude = 0, best_power = -1;
+    std::uint32_t best = 0;
+  };
+  const Survey total = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(patches_.size()), 2048), Survey{},
+      [&](const tbb::blocked_range<std::uint32_t>& range, Survey s) {
+        for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
+          const Patch& patch = patches_[p];
+          s.unshot += patch.unshot * patch.area;
+          const double power = magnitude(patch.unshot) * patch.area;
+          s.magnitude += power;
+          if (power > s.best_power) {
+            s.best = p;
+            s.best_power = power;
+          }
+        }
+        return s;
+      },
+      [](Survey left, const Survey& right) {
+        left.unshot += right.unshot;
+        left.magnitude += right.magnitude;
+        if (right.best_power > left.best_power) {
+          left.best = right.best;
+          left.best_power = right.best_power;
+        }
+        return left;
+      });
+  report_.energy.unshot = total.unshot;
+  unshot_magnitude_ = total.magnitude;
+  brightest_ = total.best;
 }
 
 std::size_t resident_memory() {
@@ -467,10 +485,16 @@ Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const
 void Solver::initialise_new_elements() {
   const std::size_t count = hierarchy_.element_count();
   register_receivers(static_cast<ElementId>(initialised_));
-  value_.resize(count);
-  pending_.resize(count);
-  gathered_in_.resize(count, 0);
+  const ElementId first = static_cast<ElementId>(initialised_);
+  // The new entries are written below, in parallel (their memory is touched first there).
+  value_.resize_for_overwrite(count);
+  pending_.resize_for_overwrite(count);
+  gathered_in_.resize_for_overwrite(count);
   if (refine_.method == Method::adaptive || refine_.new_elements == RefineSettings::NewElements::gather) {
+    for (ElementId e = first; e < count; ++e) {
+      pending_[e] = {};
+      gathered_in_[e] = 0;
+    }
     gather_new_elements(initialised_);
     initialised_ = count;
     return;
@@ -479,9 +503,10 @@ void Solver::initialise_new_elements() {
   // so each takes its values from its nearest ancestor that already had values: the
   // same as going through the new parents, since both rules reproduce a linear (or
   // constant) function on the flat ancestor.
-  const ElementId first = static_cast<ElementId>(initialised_);
   parallel_for_index(count - first, 1024, [&](std::size_t n) {
     const ElementId e = first + static_cast<ElementId>(n);
+    pending_[e] = {};
+    gathered_in_[e] = 0;
     const Element& el = hierarchy_.element(e);
     ElementId source = el.parent;
     while (source >= first) source = hierarchy_.element(source).parent;
