@@ -449,6 +449,27 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
   const double shot = (reflectance * current_shot_).luminance();
   in.pushdown_error = in.current_peak = 0;
   if (!(shot > 0)) return;
+  // Far from the sender, what matters is the second difference of F along each edge,
+  // F(mid) - (F(a) + F(b)) / 2, and the point-to-area form A cos cos / (pi r^2) gives it
+  // within a fraction (R/r)^2 of itself (R: the sender's radius), at a fraction of the
+  // closed form's cost. Used when q is at least kFarField sender radii away and no part
+  // of the sender is below q's horizon (nor q behind the sender), where the closed form
+  // would clip.
+  Vec3d pos[3];
+  for (int k = 0; k < 3; ++k) pos[k] = hierarchy_.position(el.corners[k]);
+  double q_radius = 0;
+  for (const Vec3d& p : pos) q_radius = std::max(q_radius, (p - centroid).norm());
+  bool far = (centroid - sender.centre).norm() - q_radius >= kFarField * sender.radius;
+  for (int k = 0; far && k < 3; ++k)
+    far = OpenMesh::dot(n, sender.corners[k] - centroid) > 0 && OpenMesh::dot(sender.normal, pos[k] - sender.corners[0]) > 0;
+  auto far_form = [&](const Vec3d& x) {
+    const Vec3d d = sender.centre - x;
+    const double r2 = d.sqrnorm();
+    return sender.area * OpenMesh::dot(n, d) * -OpenMesh::dot(sender.normal, d) / (M_PI * r2 * r2);
+  };
+  double far_at[3] = {0, 0, 0};
+  if (far)
+    for (int k = 0; k < 3; ++k) far_at[k] = far_form(receivers_[corner_receiver_[q][k]].point);
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const CornerFormFactor& fa = corner_form_factor(q, k);
@@ -456,10 +477,12 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
     const double a = in.current[k].luminance(), b = in.current[l].luminance();
     const double unoccluded = fa.unoccluded + fb.unoccluded;
     const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
-    Vec3d mid = (hierarchy_.position(el.corners[k]) + hierarchy_.position(el.corners[l])) * 0.5;
+    Vec3d mid = (pos[k] + pos[l]) * 0.5;
     mid += (centroid - mid) * 1e-2;  // inside q, as evaluation points are
     const double at_mid =
-        shot * visible * point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+        far ? 0.5 * (a + b) + shot * visible * (far_form(mid) - 0.5 * (far_at[k] + far_at[l]))
+            : shot * visible *
+                  point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
     const auto fraction = [](const CornerFormFactor& f) { return f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0; };
     const bool shadow_edge = std::abs(fraction(fa) - fraction(fb)) > 1e-9;
     const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);

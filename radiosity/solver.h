@@ -134,6 +134,10 @@ class Solver {
   void estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
+  // estimate_pushdown_error(): distance, in sender radii, from which the midpoint
+  // estimate uses the point-to-area form (its error relative to the estimate is about
+  // (1 / kFarField)^2).
+  static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
   // Push-down: dB given at q's corners reaches every element below q, interpolated
