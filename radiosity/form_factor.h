@@ -5,6 +5,8 @@
 
 #include "mesh/types.h"
 
+#include <cmath>
+
 namespace dynrad::rad {
 
 // Form factor from a differential area at `x` with unit normal `n` to a convex polygon
@@ -13,6 +15,18 @@ namespace dynrad::rad {
 // plane (the rest cannot reach x). Zero when x lies behind the polygon's plane: a
 // polygon sends light only from its front.
 double point_to_polygon(const Vec3d& x, const Vec3d& n, const Vec3d* corners, int count, const Vec3d& front);
+
+// The point-to-area approximation: a polygon of `area` around `centre` (unit front
+// normal `front`) seen from x as if it were a differential area, A cos cos / (pi r^2).
+// Its error relative to the exact form factor is of order (R / r)^2, R the polygon's
+// radius and r its distance; no clipping at x's horizon (the caller checks that none is
+// needed). Zero when either side faces away.
+inline double point_to_area(const Vec3d& x, const Vec3d& n, const Vec3d& centre, const Vec3d& front, double area) {
+  const Vec3d d = centre - x;
+  const double r2 = d.sqrnorm(), cos_x = OpenMesh::dot(n, d), cos_s = -OpenMesh::dot(front, d);
+  if (!(cos_x > 0 && cos_s > 0 && r2 > 0)) return 0.0;
+  return area * cos_x * cos_s / (M_PI * r2 * r2);
+}
 
 // std::atan2(y, x) for y >= 0 (the angle between two directions from the length of
 // their cross product and their dot product), within 1e-14, faster.

@@ -462,11 +462,7 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
   bool far = (centroid - sender.centre).norm() - q_radius >= kFarField * sender.radius;
   for (int k = 0; far && k < 3; ++k)
     far = OpenMesh::dot(n, sender.corners[k] - centroid) > 0 && OpenMesh::dot(sender.normal, pos[k] - sender.corners[0]) > 0;
-  auto far_form = [&](const Vec3d& x) {
-    const Vec3d d = sender.centre - x;
-    const double r2 = d.sqrnorm();
-    return sender.area * OpenMesh::dot(n, d) * -OpenMesh::dot(sender.normal, d) / (M_PI * r2 * r2);
-  };
+  auto far_form = [&](const Vec3d& x) { return point_to_area(x, n, sender.centre, sender.normal, sender.area); };
   double far_at[3] = {0, 0, 0};
   if (far)
     for (int k = 0; k < 3; ++k) far_at[k] = far_form(receivers_[corner_receiver_[q][k]].point);

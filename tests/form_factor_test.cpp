@@ -93,6 +93,36 @@ TEST(FormFactor, LambertMatchesNumericalIntegration) {
   EXPECT_GT(clipped, 3);  // the horizon clipping was exercised
 }
 
+// The push-down oracle's far-field estimate (Solver::estimate_pushdown_error): from
+// kFarField = 5 sender radii on, the second difference of the point-to-area form along a
+// receiver's edge must match the closed form's within a small fraction of itself, and
+// the form itself within (R / r)^2 or so.
+TEST(FormFactor, PointToAreaSecondDifferenceFarFromTheSender) {
+  // Sender: a triangle in the plane z = 4 facing down, radius 0.5 around (0, 0, 4).
+  const Vec3d a(0.5, 0, 4), b(-0.25, 0.433, 4), c(-0.25, -0.433, 4), front(0, 0, -1);
+  const Vec3d centre = (a + b + c) / 3.0;
+  const double area = 0.5 * OpenMesh::cross(b - a, c - a).norm(), radius = 0.5;
+  for (double tilt : {0.0, 0.3}) {
+    const Vec3d n = Vec3d(std::sin(tilt), 0, std::cos(tilt));  // the receiver's normal
+    for (double h : {0.5, 1.0, 2.0}) {  // receiver edge length
+      for (double x0 : {0.0, 1.0, 2.5}) {
+        // An edge of the receiver plane through (x0, 0, 0), at least 5 radii away.
+        const Vec3d p0(x0 - h / 2, 0.3, 0), p1(x0 + h / 2, 0.3, 0), mid = (p0 + p1) * 0.5;
+        ASSERT_GE((centre - mid).norm() - h / 2, 5 * radius);
+        auto exact = [&](const Vec3d& x) { return point_to_triangle(x, n, a, b, c, front); };
+        auto far = [&](const Vec3d& x) { return point_to_area(x, n, centre, front, area); };
+        const double f = exact(mid), g = far(mid);
+        const double r = (centre - mid).norm();
+        EXPECT_NEAR(g, f, 2 * (radius / r) * (radius / r) * f) << "h " << h << " x0 " << x0 << " tilt " << tilt;
+        const double d_exact = exact(mid) - 0.5 * (exact(p0) + exact(p1));
+        const double d_far = far(mid) - 0.5 * (far(p0) + far(p1));
+        EXPECT_NEAR(d_far, d_exact, 0.05 * std::abs(d_exact) + 1e-6 * f)
+            << "h " << h << " x0 " << x0 << " tilt " << tilt;
+      }
+    }
+  }
+}
+
 TEST(FormFactor, Reciprocity) {
   // Two unit squares at a skew: A_i F_ij = A_j F_ji, each side integrated numerically.
   const Vec3d floor[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};                 // faces +z, area 1
