@@ -233,6 +233,30 @@ def main():
     compare(lit, settings, centroids, SAMPLE, imported[0].matrix_world, "sample file", TIGHT, PER_MATERIAL_FILE)
     check(set(LAST_MATERIALS) == set(mtl), "materials lit: %s, in the MTL: %s" % (sorted(LAST_MATERIALS), sorted(mtl)))
 
+    # The panel's ambient and flat-region settings reach the library: after 5 shots most
+    # light is not yet shot, and the ambient term adds its estimate; without merging flat
+    # regions the box keeps at least as many triangles.
+    def light(**changes):
+        for key, value in changes.items():
+            setattr(settings, key, value)
+        for obj in bpy.data.objects:
+            obj.select_set(obj in imported)
+        bpy.context.view_layer.objects.active = imported[0]
+        check(bpy.ops.object.dynrad_light() == {"FINISHED"}, "operator failed with %s" % changes)
+        data = bpy.context.view_layer.objects.active.data
+        rgba = [0.0] * (4 * len(data.vertices))
+        data.color_attributes["radiosity"].data.foreach_get("color", rgba)
+        mean = sum(luminance(rgba[4 * i:4 * i + 3]) for i in range(len(data.vertices))) / len(data.vertices)
+        return mean, len(data.polygons)
+
+    plain, merged = light(iterations=5, ambient=False, simplify=True)
+    with_ambient, _ = light(ambient=True)
+    _, kept = light(ambient=False, simplify=False)
+    check(with_ambient > 1.2 * plain, "ambient term: mean %g against %g without" % (with_ambient, plain))
+    check(kept >= merged, "simplify off: %d triangles, on: %d" % (kept, merged))
+    print("blender_test: 5 shots, mean %.3f, with the ambient term %.3f; %d triangles merged, %d kept"
+          % (plain, with_ambient, merged, kept))
+
     # A base colour above 1 is clamped below 1 (dynrad refuses reflectance >= 1).
     bpy.data.materials["red"].node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (2, 0, 0, 1)
     reflectance, _ = dynrad_blender.material_values(bpy.data.materials["red"])

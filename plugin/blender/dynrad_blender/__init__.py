@@ -28,7 +28,7 @@ import ctypes
 import threading
 
 import bpy
-from bpy.props import EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from . import capi
 
@@ -86,6 +86,16 @@ class DynradSettings(bpy.types.PropertyGroup):
                               default=0.0, min=0.0, unit="TIME_ABSOLUTE")
     threads: IntProperty(name="Threads", description="Worker threads (0: all cores)", default=0, min=0, max=1024)
     seed: IntProperty(name="Seed", description="Seed of all ray sampling", default=1, min=0)
+    ambient: BoolProperty(
+        name="Ambient term",
+        description="Add the estimate of light not yet shot to the result, so that a solve stopped early "
+                    "(Esc, a time limit) looks close to the converged one",
+        default=False)
+    simplify: BoolProperty(
+        name="Merge flat regions",
+        description="Merge the triangles of flat regions before patching (lossless for the light; "
+                    "off keeps every triangle, as dynrad solve --no-simplify)",
+        default=True)
     last_report: StringProperty(name="Last report", default="")
 
     def options(self):
@@ -98,6 +108,8 @@ class DynradSettings(bpy.types.PropertyGroup):
             "time_limit": self.time_limit,
             "threads": self.threads,
             "seed": self.seed,
+            "ambient": int(self.ambient),
+            "simplify": int(self.simplify),
         }
 
 
@@ -351,7 +363,7 @@ class DYNRAD_PT_panel(bpy.types.Panel):
     def draw(self, context):
         settings = context.scene.dynrad
         layout = self.layout
-        for name in ("method", "max_level", "patch_size", "converge"):
+        for name in ("method", "max_level", "patch_size", "converge", "ambient", "simplify"):
             layout.prop(settings, name)
         box = layout.box()
         box.label(text="Stop rules and sampling")

@@ -139,6 +139,8 @@ class Library:
             "dynrad_options_set_seed": (status, [handle, ctypes.c_uint64]),
             "dynrad_options_set_threshold": (status, [handle, ctypes.c_double]),
             "dynrad_options_set_exposure": (status, [handle, ctypes.c_double]),
+            "dynrad_options_set_ambient": (status, [handle, ctypes.c_int]),
+            "dynrad_options_set_simplify": (status, [handle, ctypes.c_int]),
             "dynrad_solve": (
                 status,
                 [handle, handle, PROGRESS_FN, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(handle)],
