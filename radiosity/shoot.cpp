@@ -66,7 +66,7 @@ bool Solver::shoot_once() {
   sender_ = i;
   current_shot_ = shot;
   sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
-  report_.energy.unshot += shot * (-sender.area);
+  report_.energy.unshot = report_.energy.unshot - shot * sender.area;  // kept current for ambient()
   // (sender.shot grows only after this shot's walk: elements created during the walk
   // gather the shots before this one and then receive this one like the rest.)
 
@@ -108,7 +108,9 @@ bool Solver::shoot_once() {
       const ElementId q = level[n];
       const Element& el = hierarchy_.element(q);
       const Patch& patch = patches_[el.patch];
-      compute_corner_form_factors(q);  // most are known already (see below)
+      // Most are known already: level 0's from receiving_patches(), deeper levels' mostly
+      // from the overlap with mesh refinement below.
+      compute_corner_form_factors(q);
       OracleInputs& in = decisions[n].in;
       in = OracleInputs{};
       // An element gathered during this shot already holds this shot's transfer.
