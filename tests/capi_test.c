@@ -70,6 +70,32 @@ static dynrad_options* options_with(double patch_size, double converge) {
   return options;
 }
 
+/* The 2 x 1 x 1 furnace box: every face emits 1 and reflects 0.5, so B = 2 everywhere. */
+static dynrad_scene* create_furnace_box(void) {
+  const uint32_t all[6] = {0, 0, 0, 0, 0, 0};
+  const dynrad_material glow = grey(0.5, 1.0, "glow");
+  Box box;
+  make_box(&box, 2, 1, 1, all);
+  return create_box(&box, &glow, 1);
+}
+
+/* Solves and returns the per-vertex linear radiosity (3 floats per vertex; free() it),
+ * or NULL after a failed check. *vertices and, if given, *triangles receive the counts. */
+static float* solve_radiosity(dynrad_scene* scene, dynrad_options* options, const char* what, size_t* vertices,
+                              size_t* triangles) {
+  dynrad_result* result = NULL;
+  const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+  CHECK(s == DYNRAD_OK, "solve (%s): %s: %s", what, dynrad_status_name(s), dynrad_last_error());
+  *vertices = 0;
+  if (!result) return NULL;
+  *vertices = dynrad_result_vertex_count(result);
+  if (triangles) *triangles = dynrad_result_triangle_count(result);
+  float* b = malloc(3 * *vertices * sizeof(float));
+  CHECK(dynrad_result_radiosity(result, b, *vertices) == DYNRAD_OK, "%s", dynrad_last_error());
+  dynrad_result_destroy(result);
+  return b;
+}
+
 static void test_version(void) {
   CHECK(dynrad_abi_version() == DYNRAD_ABI_VERSION, "library ABI %d, header %d", dynrad_abi_version(),
         DYNRAD_ABI_VERSION);
@@ -80,11 +106,7 @@ static void test_version(void) {
 /* Every surface emits E and reflects rho: B = E / (1 - rho) at every vertex, and the
  * display colours, one exposure for a uniform field, are all equal. */
 static void test_furnace(void) {
-  const uint32_t all[6] = {0, 0, 0, 0, 0, 0};
-  const dynrad_material glow = grey(0.5, 1.0, "glow");
-  Box box;
-  make_box(&box, 2, 1, 1, all);
-  dynrad_scene* scene = create_box(&box, &glow, 1);
+  dynrad_scene* scene = create_furnace_box();
   dynrad_options* options = options_with(0.3, 1e-5);
   CHECK(dynrad_options_set_method(options, "dynamic") == DYNRAD_OK, "%s", dynrad_last_error());
   CHECK(dynrad_options_set_max_level(options, 1) == DYNRAD_OK, "%s", dynrad_last_error());
@@ -137,28 +159,17 @@ static void test_furnace(void) {
  * with it their mean is close to E / (1 - rho) = 2. Overshooting gives the same answer
  * at convergence. */
 static void test_ambient_and_overshoot(void) {
-  const uint32_t all[6] = {0, 0, 0, 0, 0, 0};
-  const dynrad_material glow = grey(0.5, 1.0, "glow");
-  Box box;
-  make_box(&box, 2, 1, 1, all);
-  dynrad_scene* scene = create_box(&box, &glow, 1);
+  dynrad_scene* scene = create_furnace_box();
   double means[3] = {0, 0, 0};
   for (int run = 0; run < 3; ++run) {
     dynrad_options* options = options_with(0.3, run == 2 ? 1e-5 : 0);
     if (run < 2) CHECK(dynrad_options_set_iterations(options, 10) == DYNRAD_OK, "%s", dynrad_last_error());
     CHECK(dynrad_options_set_ambient(options, run == 1) == DYNRAD_OK, "%s", dynrad_last_error());
     if (run == 2) CHECK(dynrad_options_set_overshoot(options, 1.3) == DYNRAD_OK, "%s", dynrad_last_error());
-    dynrad_result* result = NULL;
-    const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
-    CHECK(s == DYNRAD_OK, "solve %d: %s: %s", run, dynrad_status_name(s), dynrad_last_error());
-    if (result) {
-      const size_t n = dynrad_result_vertex_count(result);
-      float* b = malloc(3 * n * sizeof(float));
-      CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
-      for (size_t v = 0; v < n; ++v) means[run] += b[3 * v + 1] / (double)n;
-      free(b);
-      dynrad_result_destroy(result);
-    }
+    size_t n = 0;
+    float* b = solve_radiosity(scene, options, run == 0 ? "10 shots" : run == 1 ? "ambient" : "overshoot", &n, NULL);
+    for (size_t v = 0; b && v < n; ++v) means[run] += b[3 * v + 1] / (double)n;
+    free(b);
     dynrad_options_destroy(options);
   }
   CHECK(means[0] < 0.9 * 2.0, "10 shots without ambient: mean %g, expected well below 2", means[0]);
@@ -188,26 +199,18 @@ static void test_simplify(void) {
   const uint32_t materials[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   const dynrad_material glow = grey(0.5, 1.0, "glow");
   dynrad_scene* scene = NULL;
-  dynrad_status s = dynrad_scene_create(positions, 13, indices, sizes, 9, materials, &glow, 1, &scene);
+  const dynrad_status s = dynrad_scene_create(positions, 13, indices, sizes, 9, materials, &glow, 1, &scene);
   CHECK(s == DYNRAD_OK, "dynrad_scene_create: %s: %s", dynrad_status_name(s), dynrad_last_error());
   if (!scene) return;
   size_t triangles[2] = {0, 0};
   for (int run = 0; run < 2; ++run) {
     dynrad_options* options = options_with(10, 1e-4); /* patches as large as the faces */
     CHECK(dynrad_options_set_simplify(options, run == 0) == DYNRAD_OK, "%s", dynrad_last_error());
-    dynrad_result* result = NULL;
-    s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
-    CHECK(s == DYNRAD_OK, "solve (simplify %d): %s: %s", run == 0, dynrad_status_name(s), dynrad_last_error());
-    if (result) {
-      triangles[run] = dynrad_result_triangle_count(result);
-      const size_t n = dynrad_result_vertex_count(result);
-      float* b = malloc(3 * n * sizeof(float));
-      CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
-      for (size_t v = 0; v < 3 * n; ++v)
-        CHECK(fabs(b[v] - 2.0) < 0.02 * 2.0, "simplify %d: value %g at vertex %zu, expected 2", run == 0, b[v], v / 3);
-      free(b);
-      dynrad_result_destroy(result);
-    }
+    size_t n = 0;
+    float* b = solve_radiosity(scene, options, run == 0 ? "simplified" : "not simplified", &n, &triangles[run]);
+    for (size_t v = 0; b && v < 3 * n; ++v)
+      CHECK(fabs(b[v] - 2.0) < 0.02 * 2.0, "simplify %d: value %g at vertex %zu, expected 2", run == 0, b[v], v / 3);
+    free(b);
     dynrad_options_destroy(options);
   }
   /* kept, the floor's quads (and the walls' edges split where they meet them) stay */
