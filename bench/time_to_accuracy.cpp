@@ -45,19 +45,33 @@ struct Result {
   std::vector<double> values_ambient;  // the same with the ambient display term
 };
 
-Result solve(double patch_size, rad::Method method, int max_level, double converge, int threads,
-             double overshoot = 1.0) {
+struct Config {
+  const char* name;
+  double patch;
+  rad::Method method;
+  int level = 0;  // --max-level
+  double overshoot = 1.0;
+  // Receivers split uniformly to `level` at the first shot (adaptive with a zero
+  // threshold): what the patches as senders allow when receivers are fine everywhere.
+  bool uniform = false;
+  double pushdown = -1, floor = -1;  // dynamic oracle; negative: the defaults
+};
+
+Result solve(const Config& c, double converge, int threads) {
   const std::string path = std::string(DYNRAD_SAMPLES_DIR) + "/globillum_room.obj";
   LoadedScene loaded = load_scene(path);
-  make_patches(*loaded.mesh, patch_size);
+  make_patches(*loaded.mesh, c.patch);
   ElementHierarchy hierarchy(*loaded.mesh);
   rad::SolveOptions options;
   options.converge = converge;
   options.threads = threads;
-  options.overshoot = overshoot;
+  options.overshoot = c.overshoot;
   rad::RefineSettings refine;
-  refine.method = method;
-  refine.max_level = max_level;
+  refine.method = c.uniform ? rad::Method::adaptive : c.method;
+  refine.max_level = c.level;
+  if (c.uniform) refine.adaptive_threshold = 0;
+  if (c.pushdown >= 0) refine.dynamic.pushdown = c.pushdown;
+  if (c.floor >= 0) refine.dynamic.pushdown_floor = c.floor;
   rad::Solver solver(*loaded.mesh, hierarchy, options, refine);
   Result r;
   r.report = solver.run();
@@ -95,7 +109,7 @@ int main(int argc, char** argv) {
     std::fclose(f);
   }
   if (reference.values.size() != grid().size()) {
-    reference = solve(0.5, rad::Method::progressive, 0, 1e-4, threads);
+    reference = solve({"reference", 0.5, rad::Method::progressive}, 1e-4, threads);
     std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
                 reference.report.iterations, reference.report.seconds, reference.values.size());
     if (std::FILE* f = std::fopen(cache.c_str(), "w")) {
@@ -105,22 +119,24 @@ int main(int argc, char** argv) {
   } else {
     std::printf("reference: %zu grid points from %s\n", reference.values.size(), cache.c_str());
   }
-  struct Config {
-    const char* name;
-    double patch;
-    rad::Method method;
-    int level;
-    double overshoot;
-  };
+  using M = rad::Method;
   const Config configs[] = {
-      {"progressive 2.0 m", 2.0, rad::Method::progressive, 0, 1.0},
-      {"progressive 1.0 m", 1.0, rad::Method::progressive, 0, 1.0},
-      {"progressive 1.0 m, w 1.3", 1.0, rad::Method::progressive, 0, 1.3},
-      {"progressive 1.0 m, w 1.6", 1.0, rad::Method::progressive, 0, 1.6},
-      {"dynamic 2.0 m, level 2", 2.0, rad::Method::dynamic, 1, 1.0},
-      {"dynamic 2.0 m, level 3", 2.0, rad::Method::dynamic, 2, 1.0},
-      {"dynamic 1.0 m, level 2", 1.0, rad::Method::dynamic, 1, 1.0},
-      {"dynamic 1.0 m, level 2, w 1.3", 1.0, rad::Method::dynamic, 1, 1.3},
+      {"progressive 2.0 m", 2.0, M::progressive},
+      {"progressive 1.4 m", 1.4, M::progressive},
+      {"progressive 1.2 m", 1.2, M::progressive},
+      {"progressive 1.0 m", 1.0, M::progressive},
+      {"progressive 1.0 m, w 1.3", 1.0, M::progressive, 0, 1.3},
+      {"progressive 1.0 m, w 1.6", 1.0, M::progressive, 0, 1.6},
+      {"dynamic 2.0 m, level 2", 2.0, M::dynamic, 1},
+      {"dynamic 2.0 m, level 3", 2.0, M::dynamic, 2},
+      {"dynamic 1.4 m, level 3", 1.4, M::dynamic, 2},
+      {"dynamic 1.4 m, level 3, k 0.01", 1.4, M::dynamic, 2, 1.0, false, 0.01, 0.005},
+      {"dynamic 1.0 m, level 2", 1.0, M::dynamic, 1},
+      {"dynamic 1.0 m, level 2, w 1.3", 1.0, M::dynamic, 1, 1.3},
+      // Where the error comes from: fine receivers everywhere leave only the senders'.
+      {"uniform 2.0 m, level 3", 2.0, M::adaptive, 2, 1.0, true},
+      {"uniform 1.4 m, level 3", 1.4, M::adaptive, 2, 1.0, true},
+      {"uniform 1.0 m, level 3", 1.0, M::adaptive, 2, 1.0, true},
   };
   std::printf("%-30s %8s %7s %9s %10s %9s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error",
               "+ambient");
@@ -128,7 +144,7 @@ int main(int argc, char** argv) {
   for (const Config& c : configs) {
     if (!only.empty() && std::string(c.name).find(only) == std::string::npos) continue;
     for (double converge : {0.3, 0.1, 0.05, 0.02, 0.01, 0.005}) {
-      const Result r = solve(c.patch, c.method, c.level, converge, threads, c.overshoot);
+      const Result r = solve(c, converge, threads);
       std::printf("%-30s %7.1f%% %7zu %9zu %10.3f %8.2f%% %8.2f%%\n", c.name, 100 * converge, r.report.iterations,
                   r.report.elements, r.report.seconds, 100 * mean_error(r.values, reference.values),
                   100 * mean_error(r.values_ambient, reference.values));
