@@ -236,6 +236,8 @@ def main():
     # The panel's ambient and flat-region settings reach the library: after 5 shots most
     # light is not yet shot, and the ambient term adds its estimate; without merging flat
     # regions the box keeps at least as many triangles.
+    LAST_REFLECTED = [0.0]
+
     def light(**changes):
         for key, value in changes.items():
             setattr(settings, key, value)
@@ -247,6 +249,13 @@ def main():
         rgba = [0.0] * (4 * len(data.vertices))
         data.color_attributes["radiosity"].data.foreach_get("color", rgba)
         mean = sum(luminance(rgba[4 * i:4 * i + 3]) for i in range(len(data.vertices))) / len(data.vertices)
+        # The same over the vertices of reflecting faces only (the light's own value
+        # is its emission, whatever was shot).
+        light_slots = {i for i, m in enumerate(data.materials) if m and m.name == "light"}
+        lit = {v for p in data.polygons if p.material_index not in light_slots for v in p.vertices}
+        lit -= {v for p in data.polygons if p.material_index in light_slots for v in p.vertices}
+        reflected = sum(luminance(rgba[4 * i:4 * i + 3]) for i in lit) / len(lit)
+        LAST_REFLECTED[0] = reflected
         return mean, len(data.polygons)
 
     plain, merged = light(iterations=5, ambient=False, simplify=True)
@@ -256,6 +265,64 @@ def main():
     check(kept >= merged, "simplify off: %d triangles, on: %d" % (kept, merged))
     print("blender_test: 5 shots, mean %.3f, with the ambient term %.3f; %d triangles merged, %d kept"
           % (plain, with_ambient, merged, kept))
+
+    # The refinement settings reach the library too. Dynamic subdivision, 30 shots on
+    # patches of 100 (the Cornell box is 550 across): a looser push-down error refines
+    # less, an element limit stops refinement early (the closure of its last split may
+    # pass it by a few), and an over-relaxed first shot (overshoot 1.5: the light sends
+    # half as much again as it emits, and takes the excess back in later shots) leaves
+    # every lit surface half as bright again.
+    _, tight = light(method="dynamic", max_level=3, iterations=30, simplify=True, pushdown_error=0.01,
+                     pushdown_floor=0.0)
+    _, loose = light(pushdown_error=0.5, pushdown_floor=0.5)
+    _, limited = light(pushdown_error=0.01, pushdown_floor=0.0, max_elements=5000)
+    check(loose < tight, "push-down error 0.5: %d triangles, 0.01: %d" % (loose, tight))
+    check(loose < limited < tight, "max elements 5000: %d triangles, no limit: %d" % (limited, tight))
+    light(method="progressive", iterations=1, max_elements=0)
+    plain = LAST_REFLECTED[0]
+    light(overshoot=1.5)
+    overshot = LAST_REFLECTED[0]
+    check(abs(overshot / plain - 1.5) < 1e-3, "overshoot 1.5: reflecting surfaces %g against %g without"
+          % (overshot, plain))
+    _, paper_fine = light(method="dynamic", iterations=30, overshoot=1.0, oracle="paper", threshold=0.05)
+    _, paper_coarse = light(threshold=0.9)
+    check(paper_coarse < paper_fine, "paper oracle at 0.9: %d triangles, at 0.05: %d" % (paper_coarse, paper_fine))
+    print("blender_test: dynamic, 30 shots: %d triangles (push-down error 0.01), %d (0.5), %d (max elements 5000); "
+          "paper oracle %d (0.05), %d (0.9); one shot, reflecting surfaces %.4f, overshoot 1.5 %.4f"
+          % (tight, loose, limited, paper_fine, paper_coarse, plain, overshot))
+
+    # The panel shows each method's settings, and every one it shows exists.
+    class Layout:
+        def __init__(self, shown):
+            self.shown = shown
+
+        def prop(self, owner, name):
+            check(hasattr(owner, name), "the panel shows '%s', which the settings lack" % name)
+            self.shown.append(name)
+
+        def box(self):
+            return self
+
+        def label(self, **_):
+            pass
+
+        def operator(self, *_, **__):
+            pass
+
+    def panel(method, oracle="pushdown"):
+        settings.method, settings.oracle = method, oracle
+        shown = []
+        panel_self = type("PanelSelf", (), {"layout": Layout(shown)})()
+        dynrad_blender.DYNRAD_PT_panel.draw(panel_self, bpy.context)
+        return set(shown)
+
+    refinement = {"threshold", "oracle", "pushdown_error", "pushdown_floor", "max_elements"}
+    check(not panel("progressive") & refinement, "progressive shows refinement settings")
+    check(panel("adaptive") & refinement == {"threshold", "max_elements"}, "adaptive's settings")
+    check(panel("dynamic") & refinement == refinement - {"threshold"}, "dynamic's settings (push-down)")
+    check(panel("dynamic", "paper") & refinement == {"oracle", "threshold", "max_elements"},
+          "dynamic's settings (paper)")
+    check("overshoot" in panel("progressive"), "the panel lacks the overshoot")
 
     # A base colour above 1 is clamped below 1 (dynrad refuses reflectance >= 1).
     bpy.data.materials["red"].node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (2, 0, 0, 1)

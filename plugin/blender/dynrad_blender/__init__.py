@@ -96,6 +96,36 @@ class DynradSettings(bpy.types.PropertyGroup):
         description="Merge the triangles of flat regions before patching (lossless for the light; "
                     "off keeps every triangle, as dynrad solve --no-simplify)",
         default=True)
+    # Refinement: the command line's --threshold, --oracle, --pushdown-error,
+    # --pushdown-floor and --max-elements, with its defaults.
+    threshold: FloatProperty(
+        name="Gradient threshold",
+        description="Adaptive: refine where the cumulated radiosity's corners differ by more than this "
+                    "fraction; also all three of the paper oracle's thresholds",
+        default=0.25, min=0.001, max=1.0, precision=3)
+    oracle: EnumProperty(
+        name="Oracle",
+        items=[
+            ("pushdown", "Push-down", "Refine where pushing this sender's light down would leave more than "
+                                      "the push-down error (the default)"),
+            ("paper", "Paper", "Figure 6 of Dubuis & Bieri: three gradient conditions"),
+        ],
+        default="pushdown")
+    pushdown_error: FloatProperty(
+        name="Push-down error",
+        description="Largest error, as a fraction of a transfer, left where refinement stops (smaller: finer "
+                    "and slower)",
+        default=0.04, min=0.0, max=1.0, precision=3)
+    pushdown_floor: FloatProperty(
+        name="Push-down floor",
+        description="Transfers below this fraction of an element's brightness do not refine it",
+        default=0.02, min=0.0, max=1.0, precision=3)
+    max_elements: IntProperty(
+        name="Max elements", description="Stop refining at this many elements (0: no limit)", default=0, min=0)
+    overshoot: FloatProperty(
+        name="Overshoot",
+        description="Over-relax each shot by this factor (1: plain progressive refinement; 1.3 needs fewer shots)",
+        default=1.0, min=0.05, max=1.95, precision=2)
     last_report: StringProperty(name="Last report", default="")
 
     def options(self):
@@ -110,6 +140,12 @@ class DynradSettings(bpy.types.PropertyGroup):
             "seed": self.seed,
             "ambient": int(self.ambient),
             "simplify": int(self.simplify),
+            "threshold": self.threshold,
+            "oracle": self.oracle,
+            "pushdown_error": self.pushdown_error,
+            "pushdown_floor": self.pushdown_floor,
+            "max_elements": self.max_elements,
+            "overshoot": self.overshoot,
         }
 
 
@@ -365,9 +401,17 @@ class DYNRAD_PT_panel(bpy.types.Panel):
         layout = self.layout
         for name in ("method", "max_level", "patch_size", "converge", "ambient", "simplify"):
             layout.prop(settings, name)
+        if settings.method != "progressive":
+            box = layout.box()
+            box.label(text="Refinement")
+            names = ["threshold"] if settings.method == "adaptive" else ["oracle"]
+            if settings.method == "dynamic":
+                names += ["pushdown_error", "pushdown_floor"] if settings.oracle == "pushdown" else ["threshold"]
+            for name in names + ["max_elements"]:
+                box.prop(settings, name)
         box = layout.box()
         box.label(text="Stop rules and sampling")
-        for name in ("iterations", "time_limit", "threads", "seed"):
+        for name in ("iterations", "time_limit", "overshoot", "threads", "seed"):
             box.prop(settings, name)
         layout.operator(DYNRAD_OT_light.bl_idname, icon="LIGHT_SUN")
         if settings.last_report:

@@ -141,6 +141,11 @@ class Library:
             "dynrad_options_set_exposure": (status, [handle, ctypes.c_double]),
             "dynrad_options_set_ambient": (status, [handle, ctypes.c_int]),
             "dynrad_options_set_simplify": (status, [handle, ctypes.c_int]),
+            "dynrad_options_set_oracle": (status, [handle, ctypes.c_char_p]),
+            "dynrad_options_set_oracle_threshold": (status, [handle, ctypes.c_char_p, ctypes.c_double]),
+            "dynrad_options_set_max_elements": (status, [handle, ctypes.c_uint64]),
+            "dynrad_options_set_overshoot": (status, [handle, ctypes.c_double]),
+            "dynrad_options_set_negligible_share": (status, [handle, ctypes.c_double]),
             "dynrad_solve": (
                 status,
                 [handle, handle, PROGRESS_FN, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(handle)],
@@ -216,14 +221,23 @@ class Result:
         return len(self.triangles) // 3
 
 
+# The names dynrad_options_set_oracle_threshold takes.
+ORACLE_THRESHOLDS = ("cumulated_gradient", "current_gradient", "current_ratio", "pushdown_error", "pushdown_floor",
+                     "pushdown_ambient")
+
+
 def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials, materials, options,
           progress=None, cancel=None):
     """Builds a scene and solves it.
 
     positions: flat x y z sequence; polygon_sizes, polygon_indices, polygon_materials as
     in dynrad_scene_create; materials: (name, reflectance rgb, emission rgb) tuples;
-    options: dict with any of method, max_level, patch_size, converge, iterations,
-    time_limit, threads, seed, threshold, exposure; progress(shot, unshot) returning
+    options: dict of setter names (dynrad_options_set_NAME: method, max_level, patch_size,
+    converge, iterations, time_limit, threads, seed, threshold, oracle, max_elements,
+    overshoot, negligible_share, ambient, simplify, exposure) or names of
+    dynrad_options_set_oracle_threshold (ORACLE_THRESHOLDS), applied in the dict's order
+    (set oracle before cumulated_gradient: it picks whose gradient that is);
+    progress(shot, unshot) returning
     True stops the solve; cancel: a ctypes.c_int another thread may set to 1.
     Returns a Result (result.stopped tells whether it was stopped early)."""
     keep = []
@@ -250,6 +264,9 @@ def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials,
     try:
         library.check(library.dynrad_options_create(ctypes.byref(c_options)))
         for name, value in options.items():
+            if name in ORACLE_THRESHOLDS:
+                library.check(library.dynrad_options_set_oracle_threshold(c_options, name.encode(), float(value)))
+                continue
             setter = getattr(library, "dynrad_options_set_" + name, None)
             if setter is None:
                 raise DynradError(-1, "unknown option '%s'" % name)
