@@ -8,7 +8,9 @@
 // they are printed once).
 //
 // Usage: bench_time_to_accuracy [threads [configuration name contains]]   (default: all
-// cores, every configuration). Run it from build/bench (the reference cache goes there).
+// cores, every configuration). "k" is dynamic's push-down error (with a floor of half
+// of it), "w" the overshoot, "flat:" rows shoot evenly from each patch (--flat-senders).
+// Run it from build/bench (the reference cache goes there).
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/probe.h"
@@ -55,6 +57,7 @@ struct Config {
   // threshold): what the patches as senders allow when receivers are fine everywhere.
   bool uniform = false;
   double pushdown = -1, floor = -1;  // dynamic oracle; negative: the defaults
+  bool shaped = true;                // SolveOptions::shaped_senders
 };
 
 Result solve(const Config& c, double converge, int threads) {
@@ -66,6 +69,7 @@ Result solve(const Config& c, double converge, int threads) {
   options.converge = converge;
   options.threads = threads;
   options.overshoot = c.overshoot;
+  options.shaped_senders = c.shaped;
   rad::RefineSettings refine;
   refine.method = c.uniform ? rad::Method::adaptive : c.method;
   refine.max_level = c.level;
@@ -109,7 +113,9 @@ int main(int argc, char** argv) {
     std::fclose(f);
   }
   if (reference.values.size() != grid().size()) {
-    reference = solve({"reference", 0.5, rad::Method::progressive}, 1e-4, threads);
+    // Even senders, as the reference always was (shaped ones move it by a few
+    // hundredths of a percent: bench/README.md).
+    reference = solve({"reference", 0.5, rad::Method::progressive, 0, 1.0, false, -1, -1, false}, 1e-4, threads);
     std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
                 reference.report.iterations, reference.report.seconds, reference.values.size());
     if (std::FILE* f = std::fopen(cache.c_str(), "w")) {
@@ -129,6 +135,10 @@ int main(int argc, char** argv) {
       {"progressive 1.0 m, w 1.6", 1.0, M::progressive, 0, 1.6},
       {"dynamic 2.0 m, level 2", 2.0, M::dynamic, 1},
       {"dynamic 2.0 m, level 3", 2.0, M::dynamic, 2},
+      {"dynamic 2.0 m, level 2, k 0.02", 2.0, M::dynamic, 1, 1.0, false, 0.02, 0.01},
+      {"dynamic 2.0 m, level 3, k 0.02", 2.0, M::dynamic, 2, 1.0, false, 0.02, 0.01},
+      {"dynamic 2.0 m, level 3, k 0.01", 2.0, M::dynamic, 2, 1.0, false, 0.01, 0.005},
+      {"dynamic 2.0 m, level 2, w 1.3", 2.0, M::dynamic, 1, 1.3},
       {"dynamic 1.4 m, level 3", 1.4, M::dynamic, 2},
       {"dynamic 1.4 m, level 3, k 0.01", 1.4, M::dynamic, 2, 1.0, false, 0.01, 0.005},
       {"dynamic 1.0 m, level 2", 1.0, M::dynamic, 1},
@@ -137,6 +147,11 @@ int main(int argc, char** argv) {
       {"uniform 2.0 m, level 3", 2.0, M::adaptive, 2, 1.0, true},
       {"uniform 1.4 m, level 3", 1.4, M::adaptive, 2, 1.0, true},
       {"uniform 1.0 m, level 3", 1.0, M::adaptive, 2, 1.0, true},
+      // The same and the best rows with senders that shoot evenly (--flat-senders).
+      {"flat: uniform 2.0 m, level 3", 2.0, M::adaptive, 2, 1.0, true, -1, -1, false},
+      {"flat: uniform 1.4 m, level 3", 1.4, M::adaptive, 2, 1.0, true, -1, -1, false},
+      {"flat: progressive 1.0 m", 1.0, M::progressive, 0, 1.0, false, -1, -1, false},
+      {"flat: dynamic 2.0 m, level 3, k 0.02", 2.0, M::dynamic, 2, 1.0, false, 0.02, 0.01, false},
   };
   std::printf("%-30s %8s %7s %9s %10s %9s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error",
               "+ambient");

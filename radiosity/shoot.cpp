@@ -65,6 +65,7 @@ bool Solver::shoot_once() {
   const Rgb shot = unshot * options_.overshoot;
   sender_ = i;
   current_shot_ = shot;
+  shape_sender();
   sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
   report_.energy.unshot = report_.energy.unshot - shot * sender.area;  // kept current for ambient()
   // (sender.shot grows only after this shot's walk: elements created during the walk

@@ -4,6 +4,7 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/parallel.h"
 
+#include <cstdlib>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_reduce.h>
@@ -233,10 +234,11 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
       }
       // Negligible: at any point x of the receiver, F(x -> sender) <= A_i / (pi d^2),
       // with d no more than the distance between the two patches, so the receiver's
-      // share of the shot's power, A_j F_avg / A_i, is at most A_j / (pi d^2).
+      // share of the shot's power, A_j F_avg / A_i, is at most A_j / (pi d^2) (times
+      // the largest weight of a shaped sender's parts).
       const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
       if (per_patch > 0 && d > 0) {
-        const double bound = receiver.area / (M_PI * d * d);
+        const double bound = shape_.max_weight * receiver.area / (M_PI * d * d);
         if (bound < per_patch) {
           verdict[j] = bound;
           return;
@@ -359,7 +361,9 @@ void Solver::register_receivers(ElementId first) {
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
                                  double* unoccluded) const {
   const Patch& sender = patches_[sender_id];
-  double f = point_to_triangle(x, normal, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+  double f = sender_id == sender_ ? sender_closed_form(x, normal)
+                                  : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
+                                                      sender.corners[2], sender.normal);
   if (unoccluded) *unoccluded = f;
   if (f <= 0) return 0.0;
   // Visible fraction: a few rays first; more only where those disagree.
@@ -432,9 +436,69 @@ double Solver::element_form_factor(ElementId q) const {
     unoccluded += f.unoccluded;
   }
   const double visible = unoccluded > 0 ? std::min(1.0, corners / unoccluded) : 0.0;
-  const double centre = point_to_triangle(hierarchy_.centroid(q), hierarchy_.normal(q), sender.corners[0],
-                                          sender.corners[1], sender.corners[2], sender.normal) * visible;
+  (void)sender;
+  const double centre = sender_closed_form(hierarchy_.centroid(q), hierarchy_.normal(q)) * visible;
   return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
+}
+
+double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
+  const Patch& sender = patches_[sender_];
+  if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius) {
+    double f = 0;
+    for (int s = 0; s < 4; ++s)
+      f += shape_.weight[s] * point_to_triangle(x, n, shape_.parts[s][0], shape_.parts[s][1], shape_.parts[s][2],
+                                                sender.normal);
+    return f;
+  }
+  double f = point_to_triangle(x, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+  if (shape_.on && f > 0) {
+    for (int s = 0; s < 4; ++s)
+      f += (shape_.weight[s] - 1) * point_to_area(x, n, shape_.centroids[s], sender.normal, sender.area / 4);
+    f = std::max(f, 0.0);
+  }
+  return f;
+}
+
+void Solver::shape_sender() {
+  shape_.on = false;
+  shape_.max_weight = 1;
+  if (!options_.shaped_senders) return;
+  Patch& sender = patches_[sender_];
+  const ElementId root = hierarchy_.patch_root(sender_);
+  // The unshot radiosity at the corners: everything they gained since the sender last
+  // shot (its emission, before its first shot), plus what an overshoot left (below 0).
+  double b[3], mean = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double now = value_[root][k].luminance();
+    b[k] = now - sender.shot_at_corners[k];
+    sender.shot_at_corners[k] = now - (1 - options_.overshoot) * b[k];
+    mean += b[k] / 3;
+  }
+  // The shape is the corners' deviation from their mean, added to the sender's mean
+  // unshot radiosity m (from the energy it received, which also knows its interior):
+  // the unshot at y is m + b(y) - mean b. Added, not scaled: over a whole solve the
+  // deviations sum to those of the sender's final corner values, so where the answer
+  // is even (a furnace) the shapes cancel.
+  // (m is below 0 when the sender gives back what an overshoot sent too much; the
+  // shape is then that of the excess.)
+  const double m = current_shot_.luminance() / options_.overshoot;
+  if (!(std::abs(m) > 0)) return;
+  double spread = 0;
+  for (int k = 0; k < 3; ++k) spread = std::max(spread, std::abs(b[k] - mean));
+  if (spread < 1e-3 * std::abs(m)) return;  // even enough: one closed form
+  const auto& c = sender.corners;
+  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
+  shape_.parts = {{{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}}};
+  // Linear between the corners: the part at corner k has mean (4 b_k + the other two)
+  // / 6 (its centroid's value), the middle part the corners' mean.
+  for (int k = 0; k < 3; ++k)
+    shape_.weight[k] = 1 + ((4 * b[k] + b[(k + 1) % 3] + b[(k + 2) % 3]) / 6 - mean) / m;
+  shape_.weight[3] = 1;
+  for (int s = 0; s < 4; ++s) {
+    shape_.centroids[s] = (shape_.parts[s][0] + shape_.parts[s][1] + shape_.parts[s][2]) / 3.0;
+    shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
+  }
+  shape_.on = true;
 }
 
 double Solver::element_reach(ElementId q) const {
@@ -477,8 +541,7 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
     mid += (centroid - mid) * 1e-2;  // inside q, as evaluation points are
     const double at_mid =
         far ? 0.5 * (a + b) + shot * visible * (far_form(mid) - 0.5 * (far_at[k] + far_at[l]))
-            : shot * visible *
-                  point_to_triangle(mid, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
+            : shot * visible * sender_closed_form(mid, n);
     const auto fraction = [](const CornerFormFactor& f) { return f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0; };
     const bool shadow_edge = std::abs(fraction(fa) - fraction(fb)) > 1e-9;
     const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);

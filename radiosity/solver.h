@@ -91,6 +91,9 @@ class Solver {
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
     Vec3d centre;                   // centre and radius of a sphere around the patch
     double radius = 0;
+    // Luminance at the patch's corners that is not unshot: the corner values minus
+    // this is the shape of its unshot radiosity (see shape_sender()).
+    std::array<double, 3> shot_at_corners{};
   };
 
   std::uint32_t brightest_patch() const { return brightest_; }
@@ -129,6 +132,26 @@ class Solver {
   // shot again.
   void gather_new_elements(std::size_t first);
   double element_form_factor(ElementId e) const;
+  // Lambert's closed form from point x (normal n) to the current sender, with the
+  // sender's shape (SolveOptions::shaped_senders) where it has one.
+  double sender_closed_form(const Vec3d& x, const Vec3d& n) const;
+  // The current sender's shape: its unshot radiosity, linear between its corners (the
+  // corner values minus Patch::shot_at_corners), as four
+  // midpoint sub-triangles (equal areas) with weights w (their mean radiosity over the
+  // sender's; the mean of w is 1, so the power shot is the same). F to the shaped
+  // sender is the sum of w times F to each part: four closed forms within kShapeNear
+  // sender radii; beyond, F to the whole plus the parts' corrections (w - 1) times
+  // their point-to-area forms (the corrections sum to nothing at a distance, and their
+  // relative error is about (part radius / distance)^2).
+  struct SenderShape {
+    bool on = false;
+    std::array<std::array<Vec3d, 3>, 4> parts;
+    std::array<Vec3d, 4> centroids;
+    std::array<double, 4> weight{};
+    double max_weight = 1;
+  } shape_;
+  static constexpr double kShapeNear = 2.0;
+  void shape_sender();
   // OracleInputs::pushdown_error and current_peak for element q and this shot's dB at
   // its corners.
   void estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;

@@ -284,6 +284,13 @@ def main():
     overshot = LAST_REFLECTED[0]
     check(abs(overshot / plain - 1.5) < 1e-3, "overshoot 1.5: reflecting surfaces %g against %g without"
           % (overshot, plain))
+    # Shaped senders change the light after the first reflections (not after the first
+    # shot: the light shoots its even emission).
+    light(overshoot=1.0, iterations=20)
+    shaped = LAST_REFLECTED[0]
+    light(shaped_senders=False)
+    flat = LAST_REFLECTED[0]
+    check(shaped != flat and abs(shaped / flat - 1) < 0.05, "20 shots: shaped senders %g, flat %g" % (shaped, flat))
     _, paper_fine = light(method="dynamic", iterations=30, overshoot=1.0, oracle="paper", threshold=0.05)
     _, paper_coarse = light(threshold=0.9)
     check(paper_coarse < paper_fine, "paper oracle at 0.9: %d triangles, at 0.05: %d" % (paper_coarse, paper_fine))
@@ -322,7 +329,7 @@ def main():
     check(panel("dynamic") & refinement == refinement - {"threshold"}, "dynamic's settings (push-down)")
     check(panel("dynamic", "paper") & refinement == {"oracle", "threshold", "max_elements"},
           "dynamic's settings (paper)")
-    check("overshoot" in panel("progressive"), "the panel lacks the overshoot")
+    check({"overshoot", "shaped_senders"} <= panel("progressive"), "the panel lacks the overshoot or shaped senders")
 
     # A base colour above 1 is clamped below 1 (dynrad refuses reflectance >= 1).
     bpy.data.materials["red"].node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (2, 0, 0, 1)

@@ -220,6 +220,34 @@ static void test_simplify(void) {
   dynrad_scene_destroy(scene);
 }
 
+/* Shaped senders (the default) against even ones (dynrad_options_set_shaped_senders(o, 0),
+ * `--flat-senders`): in a room lit by its ceiling the walls' light is uneven, so the two
+ * differ, but both are the same room's light: within a few percent at every vertex. */
+static void test_shaped_senders(void) {
+  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
+  const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.0, 10.0, "ceiling")};
+  Box box;
+  make_box(&box, 3, 2, 1.5, faces);
+  dynrad_scene* scene = create_box(&box, materials, 2);
+  float* b[2] = {NULL, NULL};
+  size_t n[2] = {0, 0};
+  for (int shaped = 0; shaped < 2; ++shaped) {
+    dynrad_options* options = options_with(0.6, 1e-3);
+    CHECK(dynrad_options_set_shaped_senders(options, shaped) == DYNRAD_OK, "%s", dynrad_last_error());
+    b[shaped] = solve_radiosity(scene, options, shaped ? "shaped senders" : "flat senders", &n[shaped], NULL);
+    dynrad_options_destroy(options);
+  }
+  CHECK(n[0] == n[1] && n[0] > 0, "vertices: %zu flat, %zu shaped", n[0], n[1]);
+  double largest = 0;
+  for (size_t v = 0; b[0] && b[1] && n[0] == n[1] && v < 3 * n[0]; ++v)
+    if (b[0][v] > 0) largest = fmax(largest, fabs(b[1][v] - b[0][v]) / b[0][v]);
+  CHECK(largest > 1e-4 && largest < 0.1, "largest relative difference, shaped against flat senders: %g", largest);
+  printf("shaped senders: largest difference from flat ones %.2f%%\n", 100 * largest);
+  free(b[0]);
+  free(b[1]);
+  dynrad_scene_destroy(scene);
+}
+
 static void test_lit_room_energy(void) {
   const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
   const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling")};
@@ -443,6 +471,7 @@ int main(void) {
   test_furnace();
   test_ambient_and_overshoot();
   test_simplify();
+  test_shaped_senders();
   test_lit_room_energy();
   test_stopping();
   test_errors();

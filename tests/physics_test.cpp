@@ -313,6 +313,67 @@ TEST(Culling, NegligibleReceiversCostAtMostTheirStatedShare) {
   }
 }
 
+// Shaped senders (SolveOptions::shaped_senders) against even ones: a 2 x 2 x 1 room lit
+// by its whole ceiling, walls and floor reflecting 0.7, so that the light the walls
+// send on is brighter near the ceiling. Coarse patches (1 m) with receivers split
+// uniformly three levels below them leave mostly the senders' error; measured at
+// points of the floor and walls against 0.25 m patches with even senders.
+TEST(ShapedSenders, CloserToAFineSolutionThanEvenSenders) {
+  PolygonSoup soup = empty_soup({Material{"wall", Rgb(0.7), Rgb(0.0), "test", true},
+                                 Material{"light", Rgb(0.0), Rgb(1.0), "test", true}});
+  add_room(soup, {0, 0, 0}, {2, 2, 1}, {0, 0, 0, 0, 0, 1});
+  auto solve = [&](double patch, int levels, bool shaped) {
+    SolveOptions options;
+    options.converge = 1e-3;
+    options.shaped_senders = shaped;
+    RefineSettings refine;
+    refine.method = levels > 0 ? Method::adaptive : Method::progressive;
+    refine.adaptive_threshold = 0;  // every element splits: uniform receivers
+    refine.max_level = levels;
+    TriangleSoup clean;
+    cleanup(soup, clean);
+    Solved s;
+    s.scene = std::make_unique<SceneMesh>(clean);
+    make_patches(*s.scene, patch);
+    s.hierarchy = std::make_unique<ElementHierarchy>(*s.scene);
+    s.solver = std::make_unique<Solver>(*s.scene, *s.hierarchy, options, refine);
+    s.solver->run();
+    return s;
+  };
+  struct Point {
+    Vec3d p, n;
+  };
+  std::vector<Point> points;
+  for (double u = 0.25; u < 2; u += 0.25)
+    for (double v = 0.25; v < 1; v += 0.25) {
+      points.push_back({{u, v, 0}, {0, 0, 1}});          // floor (half: the room is symmetric)
+      points.push_back({{u, 0, v}, {0, 1, 0}});          // wall y = 0
+    }
+  auto values = [&](Solved& s) {
+    const Solver::Output out = s.solver->output(false);
+    std::vector<double> v;
+    for (const Point& p : points) {
+      const auto b = probe(*s.scene, out.split, out.radiosity, p.p, p.n);
+      v.push_back(b ? b->g : std::nan(""));
+    }
+    return v;
+  };
+  Solved fine = solve(0.25, 0, false);
+  const std::vector<double> reference = values(fine);
+  double error[2] = {0, 0};
+  for (int shaped = 0; shaped < 2; ++shaped) {
+    Solved coarse = solve(1.0, 2, shaped == 1);
+    const std::vector<double> v = values(coarse);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(v[i]) && std::isfinite(reference[i]) && reference[i] > 0);
+      error[shaped] += std::abs(v[i] - reference[i]) / reference[i] / points.size();
+    }
+  }
+  std::printf("mean error at %zu points: even senders %.3f%%, shaped %.3f%%\n", points.size(), 100 * error[0],
+              100 * error[1]);
+  EXPECT_LT(error[1], 0.5 * error[0]);
+}
+
 TEST_P(Physics, CornellFloorIsRedderNextToTheRedWall) {
   LoadedScene loaded = load_scene(test::sample("cornell_box.obj"));
   make_patches(*loaded.mesh, 60.0);

@@ -51,6 +51,31 @@ TEST(SolveCommand, WritesLitMeshAndReport) {
   EXPECT_NE(r.output.find("stopped by iterations"), std::string::npos) << r.output;
 }
 
+// --flat-senders reaches the solver: the report says so, and the light differs (the
+// Cornell box's walls reflect unevenly) while staying the same picture.
+TEST(SolveCommand, FlatSendersOption) {
+  test::TempDir dir;
+  auto solve = [&](const std::string& name, const std::string& extra) {
+    const auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path(name + ".ply") +
+                                    "' --iterations 200 --report '" + dir.path(name + ".json") + "'" + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return nlohmann::json::parse(test::read_text(dir.path(name + ".json")));
+  };
+  EXPECT_EQ(solve("shaped", "")["shaped_senders"], true);
+  EXPECT_EQ(solve("flat", " --flat-senders")["shaped_senders"], false);
+  const auto shaped = read_green(dir.path("shaped.ply")), flat = read_green(dir.path("flat.ply"));
+  ASSERT_EQ(shaped.size(), flat.size());
+  ASSERT_FALSE(shaped.empty());
+  double largest = 0, sum_shaped = 0, sum_flat = 0;
+  for (std::size_t i = 0; i < shaped.size(); ++i) {
+    largest = std::max(largest, double(std::abs(shaped[i] - flat[i])));
+    sum_shaped += shaped[i];
+    sum_flat += flat[i];
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_NEAR(sum_shaped, sum_flat, 0.05 * sum_flat);
+}
+
 TEST(SolveCommand, RefusesASceneWithoutLight) {
   test::TempDir dir;
   const std::string input = dir.write("dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

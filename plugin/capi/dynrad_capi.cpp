@@ -468,6 +468,12 @@ dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on) {
   return s;
 }
 
+dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->solve.shaped_senders = on != 0;
+  return s;
+}
+
 dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure) {
   const dynrad_status s = set_option(options, std::isfinite(exposure) && exposure >= 0,
                                      "dynrad_options_set_exposure: must be a finite number >= 0 (0: automatic).");

@@ -210,6 +210,7 @@ int run_solve(SolveCliOptions& options) {
     j["negligible_receivers"] = report.negligible_receivers;
     j["negligible_share_max"] = report.negligible_share_max;
     j["ambient_display"] = options.solve.ambient_display;
+    j["shaped_senders"] = options.solve.shaped_senders;
     j["exposure"] = exposure;
     j["patch_size"] = patch_size;
     j["energy"] = {{"emitted", rgb_json(e.emitted)},
@@ -307,6 +308,9 @@ Command add_solve_command(CLI::App& app) {
                       "(0: never)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.1));
+  command->add_flag("!--flat-senders", options->solve.shaped_senders,
+                   "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped linearly "
+                   "between its corners");
   command->add_flag("--ambient", options->solve.ambient_display,
                    "Add the ambient estimate of light not yet shot to the written values (Cohen et al. 1988); "
                    "useful with --time-limit");

@@ -126,6 +126,11 @@ class DynradSettings(bpy.types.PropertyGroup):
         name="Overshoot",
         description="Over-relax each shot by this factor (1: plain progressive refinement; 1.3 needs fewer shots)",
         default=1.0, min=0.05, max=1.95, precision=2)
+    shaped_senders: BoolProperty(
+        name="Shaped senders",
+        description="Shoot each patch's light shaped linearly between its corners (off: evenly, as "
+                    "dynrad solve --flat-senders)",
+        default=True)
     last_report: StringProperty(name="Last report", default="")
 
     def options(self):
@@ -146,6 +151,7 @@ class DynradSettings(bpy.types.PropertyGroup):
             "pushdown_floor": self.pushdown_floor,
             "max_elements": self.max_elements,
             "overshoot": self.overshoot,
+            "shaped_senders": int(self.shaped_senders),
         }
 
 
@@ -411,7 +417,7 @@ class DYNRAD_PT_panel(bpy.types.Panel):
                 box.prop(settings, name)
         box = layout.box()
         box.label(text="Stop rules and sampling")
-        for name in ("iterations", "time_limit", "overshoot", "threads", "seed"):
+        for name in ("iterations", "time_limit", "overshoot", "shaped_senders", "threads", "seed"):
             box.prop(settings, name)
         layout.operator(DYNRAD_OT_light.bl_idname, icon="LIGHT_SUN")
         if settings.last_report:

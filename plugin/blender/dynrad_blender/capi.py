@@ -146,6 +146,7 @@ class Library:
             "dynrad_options_set_max_elements": (status, [handle, ctypes.c_uint64]),
             "dynrad_options_set_overshoot": (status, [handle, ctypes.c_double]),
             "dynrad_options_set_negligible_share": (status, [handle, ctypes.c_double]),
+            "dynrad_options_set_shaped_senders": (status, [handle, ctypes.c_int]),
             "dynrad_solve": (
                 status,
                 [handle, handle, PROGRESS_FN, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(handle)],
@@ -234,7 +235,7 @@ def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials,
     in dynrad_scene_create; materials: (name, reflectance rgb, emission rgb) tuples;
     options: dict of setter names (dynrad_options_set_NAME: method, max_level, patch_size,
     converge, iterations, time_limit, threads, seed, threshold, oracle, max_elements,
-    overshoot, negligible_share, ambient, simplify, exposure) or names of
+    overshoot, negligible_share, shaped_senders, ambient, simplify, exposure) or names of
     dynrad_options_set_oracle_threshold (ORACLE_THRESHOLDS), applied in the dict's order
     (set oracle before cumulated_gradient: it picks whose gradient that is);
     progress(shot, unshot) returning
