@@ -452,9 +452,15 @@ double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   }
   double f = point_to_triangle(x, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
   if (shape_.on && f > 0) {
-    for (int s = 0; s < 4; ++s)
-      f += (shape_.weight[s] - 1) * point_to_area(x, n, shape_.centroids[s], sender.normal, sender.area / 4);
-    f = std::max(f, 0.0);
+    // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a quarter
+    // of the sender sum to first order to grad K(c) . dipole, the weights' mean being 1.
+    const Vec3d d = shape_.centroid - x;
+    const double r2 = d.sqrnorm(), a = OpenMesh::dot(n, d), b = -OpenMesh::dot(sender.normal, d);
+    if (a > 0 && b > 0) {
+      const double k = sender.area / (M_PI * r2 * r2);
+      const Vec3d gradient = (n * b - sender.normal * a - d * (4 * a * b / r2)) * k;
+      f = std::max(0.0, f + OpenMesh::dot(gradient, shape_.dipole));
+    }
   }
   return f;
 }
@@ -494,10 +500,11 @@ void Solver::shape_sender() {
   for (int k = 0; k < 3; ++k)
     shape_.weight[k] = 1 + ((4 * b[k] + b[(k + 1) % 3] + b[(k + 2) % 3]) / 6 - mean) / m;
   shape_.weight[3] = 1;
-  for (int s = 0; s < 4; ++s) {
-    shape_.centroids[s] = (shape_.parts[s][0] + shape_.parts[s][1] + shape_.parts[s][2]) / 3.0;
-    shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
-  }
+  shape_.centroid = (c[0] + c[1] + c[2]) / 3.0;
+  shape_.dipole = Vec3d(0, 0, 0);
+  for (int k = 0; k < 3; ++k)  // part k's centroid is halfway from the sender's to corner k
+    shape_.dipole += (c[k] - shape_.centroid) * (0.5 * (shape_.weight[k] - 1) / 4);
+  for (int s = 0; s < 4; ++s) shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
   shape_.on = true;
 }
 

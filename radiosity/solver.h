@@ -141,16 +141,20 @@ class Solver {
   // sender's; the mean of w is 1, so the power shot is the same). F to the shaped
   // sender is the sum of w times F to each part: four closed forms within kShapeNear
   // sender radii; beyond, F to the whole plus the parts' corrections (w - 1) times
-  // their point-to-area forms (the corrections sum to nothing at a distance, and their
-  // relative error is about (part radius / distance)^2).
+  // their point-to-area forms, to first order in the parts' offsets: the gradient of
+  // the point-to-area form at the sender's centroid times the weights' dipole,
+  // sum (w - 1) (part centroid - centroid) / 4 (relative error about (sender radius /
+  // distance)^2).
   struct SenderShape {
     bool on = false;
     std::array<std::array<Vec3d, 3>, 4> parts;
-    std::array<Vec3d, 4> centroids;
     std::array<double, 4> weight{};
+    Vec3d centroid, dipole;
     double max_weight = 1;
   } shape_;
-  static constexpr double kShapeNear = 2.0;
+  // Within 1.5 radii the parts are summed. On the 1990 room's 2 m patches with uniform
+  // receivers, 1 radius leaves 0.29% from the reference, 1.5, 2 and 3 all 0.24%.
+  static constexpr double kShapeNear = 1.5;
   void shape_sender();
   // OracleInputs::pushdown_error and current_peak for element q and this shot's dB at
   // its corners.
