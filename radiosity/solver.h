@@ -6,9 +6,11 @@
 // State. Every element of the hierarchy, interior ones included, keeps the cumulated
 // radiosity at its three corners. New elements interpolate their parent's corner values
 // (linear across the flat parent, so a midpoint gets the mean of its edge's ends).
-// Patches keep their unshot radiosity. Receivers are the element corners; a corner's
-// form factor to the sender is Lambert's closed form at the corner times the fraction
-// of rays that reach the sender, evaluated once per shot for each vertex and patch.
+// Patches keep their unshot radiosity (its mean; each shot gives it a linear shape
+// from the patch's corners, see SenderShape). Receivers are the element corners; a
+// corner's form factor to the sender is Lambert's closed form at the corner times the
+// fraction of rays that reach the sender, evaluated once per shot for each vertex and
+// patch.
 #pragma once
 
 #include "mesh/refinement.h"
