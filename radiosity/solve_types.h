@@ -43,10 +43,11 @@ struct SolveOptions {
   bool cull = true;
   double negligible_share = 1e-4;
   // Shaped senders: a patch's unshot radiosity is one mean, but the light it has
-  // reflected is not even across it. Each shot takes the sender's unshot radiosity as
-  // linear between its corners (what each corner gained since the sender last shot),
-  // with the same power; near receivers see that shape (bench_time_to_accuracy: on 2 m patches of the 1990 room
-  // the error the senders leave falls from 0.80% to 0.17%). False: every patch shoots
+  // received is not even across it. Each shot gives the mean a linear shape between
+  // the sender's corners (what each corner gained since the sender last shot), with the
+  // same power; receivers near the sender see it (on 2 m patches of the 1990 room the
+  // error the senders leave falls from 0.80% to 0.24%: bench/README.md). The shape is
+  // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
   // Called at every shot boundary; returning true stops the solve there (signals).

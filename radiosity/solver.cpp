@@ -4,7 +4,6 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/parallel.h"
 
-#include <cstdlib>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_reduce.h>
@@ -428,7 +427,6 @@ double Solver::form_factor(ElementId e, int corner) const {
 // same way at every scale; Lambert's closed form at the centroid (no rays: scaled by
 // the corners' visible fractions) gives the integral a second, interior sample.
 double Solver::element_form_factor(ElementId q) const {
-  const Patch& sender = patches_[sender_];
   double corners = 0, unoccluded = 0;
   for (int k = 0; k < 3; ++k) {
     const CornerFormFactor& f = corner_form_factor(q, k);
@@ -436,7 +434,6 @@ double Solver::element_form_factor(ElementId q) const {
     unoccluded += f.unoccluded;
   }
   const double visible = unoccluded > 0 ? std::min(1.0, corners / unoccluded) : 0.0;
-  (void)sender;
   const double centre = sender_closed_form(hierarchy_.centroid(q), hierarchy_.normal(q)) * visible;
   return (1 - kCentroidWeight) * corners / 3.0 + kCentroidWeight * centre;
 }

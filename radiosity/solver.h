@@ -137,16 +137,16 @@ class Solver {
   // Lambert's closed form from point x (normal n) to the current sender, with the
   // sender's shape (SolveOptions::shaped_senders) where it has one.
   double sender_closed_form(const Vec3d& x, const Vec3d& n) const;
-  // The current sender's shape: its unshot radiosity, linear between its corners (the
-  // corner values minus Patch::shot_at_corners), as four
-  // midpoint sub-triangles (equal areas) with weights w (their mean radiosity over the
-  // sender's; the mean of w is 1, so the power shot is the same). F to the shaped
-  // sender is the sum of w times F to each part: four closed forms within kShapeNear
-  // sender radii; beyond, F to the whole plus the parts' corrections (w - 1) times
-  // their point-to-area forms, to first order in the parts' offsets: the gradient of
-  // the point-to-area form at the sender's centroid times the weights' dipole,
-  // sum (w - 1) (part centroid - centroid) / 4 (relative error about (sender radius /
-  // distance)^2).
+  // The current sender's shape: its unshot radiosity, the mean m plus the deviation of
+  // the corners' unshot values (corner values minus Patch::shot_at_corners) from their
+  // mean, linear between them; as four midpoint sub-triangles (equal areas) with
+  // weights w = that radiosity at the part's centroid / m (the mean of w is 1: the
+  // power shot is the same). F to the shaped sender is the sum of w times F to each
+  // part: four closed forms within kShapeNear sender radii; beyond, F to the whole plus
+  // the parts' corrections (w - 1) times their point-to-area forms, to first order in
+  // the parts' offsets: the gradient of the point-to-area form at the sender's centroid
+  // times the weights' dipole, sum (w - 1) (part centroid - centroid) / 4 (relative
+  // error about (sender radius / distance)^2).
   struct SenderShape {
     bool on = false;
     std::array<std::array<Vec3d, 3>, 4> parts;
