@@ -9,7 +9,7 @@
 //
 // Usage: bench_time_to_accuracy [threads [configuration name contains]]   (default: all
 // cores, every configuration). "k" is dynamic's push-down error (with a floor of half
-// of it), "w" the overshoot, "flat:" rows shoot evenly from each patch (--flat-senders).
+// of it unless "f" gives the floor), "w" the overshoot, "flat:" rows shoot evenly from each patch (--flat-senders).
 // Run it from build/bench (the reference cache goes there).
 #include "mesh/load.h"
 #include "mesh/refinement.h"
@@ -137,6 +137,7 @@ int main(int argc, char** argv) {
       {"dynamic 3.0 m, level 4, k 0.02", 3.0, M::dynamic, 3, 1.0, false, 0.02, 0.01},
       {"dynamic 2.5 m, level 3, k 0.02", 2.5, M::dynamic, 2, 1.0, false, 0.02, 0.01},
       {"dynamic 2.5 m, level 3, k 0.01", 2.5, M::dynamic, 2, 1.0, false, 0.01, 0.005},
+      {"dynamic 2.5 m, level 3, k 0.015 f 0.015", 2.5, M::dynamic, 2, 1.0, false, 0.015, 0.015},
       {"dynamic 2.2 m, level 3, k 0.02", 2.2, M::dynamic, 2, 1.0, false, 0.02, 0.01},
       {"dynamic 2.0 m, level 2", 2.0, M::dynamic, 1},
       {"dynamic 2.0 m, level 2, w 1.3", 2.0, M::dynamic, 1, 1.3},
@@ -157,6 +158,7 @@ int main(int argc, char** argv) {
       {"flat: uniform 1.4 m, level 3", 1.4, M::adaptive, 2, 1.0, true, -1, -1, false},
       {"flat: progressive 1.0 m", 1.0, M::progressive, 0, 1.0, false, -1, -1, false},
       {"flat: dynamic 2.5 m, level 3, k 0.01", 2.5, M::dynamic, 2, 1.0, false, 0.01, 0.005, false},
+      {"flat: dynamic 2.5 m, level 3, k 0.015 f 0.015", 2.5, M::dynamic, 2, 1.0, false, 0.015, 0.015, false},
       {"flat: dynamic 2.0 m, level 3, k 0.02", 2.0, M::dynamic, 2, 1.0, false, 0.02, 0.01, false},
   };
   std::printf("%-36s %8s %7s %9s %10s %9s %9s\n", "configuration", "unshot", "shots", "elements", "seconds", "error",

@@ -123,11 +123,13 @@ bool Solver::shoot_once() {
       const bool can_split = el.generation < max_generation;
       const bool odd = el.generation % 2 == 1;
       // The push-down error costs three closed forms; it is estimated only where the
-      // oracle's first condition (the cumulated gradient) holds and it can decide.
+      // oracle's first condition (the cumulated gradient) holds and it can decide. Its
+      // midpoints also give q's mean form factor, should the shot stop at q.
+      double mean_form_factor = -1;
       if (refine_.method == Method::dynamic && can_split && !odd &&
           refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
           cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient) {
-        estimate_pushdown_error(q, patch.reflectance, in);
+        mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in);
         in.ambient = (patch.reflectance * ambient_now).luminance();
       }
       bool go_on = false;
@@ -151,7 +153,7 @@ bool Solver::shoot_once() {
         // interpolated from q's corners (push-down) instead of a transfer of its own.
         value_[q] = in.cumulated;
         push_down(q, in.current);
-        decisions[n].reach = element_reach(q);
+        decisions[n].reach = mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q);
       }
     });
     ready.clear();

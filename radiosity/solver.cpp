@@ -462,46 +462,70 @@ double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   return f;
 }
 
+double Solver::luminance_at(ElementId root, const Vec3d& p) const {
+  double pending = 0;
+  ElementId e = root;
+  for (;;) {
+    const Element& el = hierarchy_.element(e);
+    if (el.is_leaf()) return interpolate(e, value_[e], p).luminance() + pending;
+    pending += interpolate(e, pending_[e], p).luminance();
+    // The child whose triangle holds p (on the split line either one: values agree).
+    const ElementId first = el.children[0];
+    const Element& c = hierarchy_.element(first);
+    const Vec3d& n = hierarchy_.normal(first);
+    bool inside = true;
+    for (int k = 0; k < 3 && inside; ++k) {
+      const Vec3d a = hierarchy_.position(c.corners[k]), b = hierarchy_.position(c.corners[(k + 1) % 3]);
+      inside = OpenMesh::dot(OpenMesh::cross(b - a, p - a), n) >= -1e-12 * (b - a).sqrnorm();
+    }
+    e = inside ? first : el.children[1];
+  }
+}
+
 void Solver::shape_sender() {
   shape_.on = false;
   shape_.max_weight = 1;
   if (!options_.shaped_senders) return;
   Patch& sender = patches_[sender_];
   const ElementId root = hierarchy_.patch_root(sender_);
-  // The unshot radiosity at the corners: everything they gained since the sender last
-  // shot (its emission, before its first shot), plus what an overshoot left (below 0).
-  double b[3], mean = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double now = value_[root][k].luminance();
-    b[k] = now - sender.shot_at_corners[k];
-    sender.shot_at_corners[k] = now - (1 - options_.overshoot) * b[k];
-    mean += b[k] / 3;
+  const auto& c = sender.corners;
+  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
+  // The unshot radiosity at the corners and edge midpoints (nodes 0-2 and 3-5):
+  // everything they gained since the sender last shot (its emission, before its first
+  // shot), plus what an overshoot left (below 0).
+  double b[6];
+  for (int k = 0; k < 6; ++k) {
+    const double now = k < 3 ? value_[root][k].luminance() : luminance_at(root, k == 3 ? m01 : k == 4 ? m12 : m20);
+    b[k] = now - sender.shot_at_nodes[k];
+    sender.shot_at_nodes[k] = now - (1 - options_.overshoot) * b[k];
   }
-  // The shape is the corners' deviation from their mean, added to the sender's mean
-  // unshot radiosity m (from the energy it received, which also knows its interior):
-  // the unshot at y is m + b(y) - mean b. Added, not scaled: over a whole solve the
-  // deviations sum to those of the sender's final corner values, so where the answer
-  // is even (a furnace) the shapes cancel.
+  // The four parts and their nodes: the corner parts, then the middle one.
+  static constexpr int kNodes[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
+  shape_.parts = {{{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}}};
+  double part_mean[4], mean = 0;
+  for (int s = 0; s < 4; ++s) {
+    part_mean[s] = (b[kNodes[s][0]] + b[kNodes[s][1]] + b[kNodes[s][2]]) / 3;
+    mean += part_mean[s] / 4;
+  }
+  // The shape is the parts' deviation from their mean, added to the sender's mean
+  // unshot radiosity m (from the energy it received, which also knows its interior).
+  // Added, not scaled: over a whole solve the deviations sum to those of the sender's
+  // final values, so where the answer is even (a furnace) the shapes cancel.
   // (m is below 0 when the sender gives back what an overshoot sent too much; the
   // shape is then that of the excess.)
   const double m = current_shot_.luminance() / options_.overshoot;
   if (!(std::abs(m) > 0)) return;
   double spread = 0;
-  for (int k = 0; k < 3; ++k) spread = std::max(spread, std::abs(b[k] - mean));
+  for (int s = 0; s < 4; ++s) spread = std::max(spread, std::abs(part_mean[s] - mean));
   if (spread < 1e-3 * std::abs(m)) return;  // even enough: one closed form
-  const auto& c = sender.corners;
-  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
-  shape_.parts = {{{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}}};
-  // Linear between the corners: the part at corner k has mean (4 b_k + the other two)
-  // / 6 (its centroid's value), the middle part the corners' mean.
-  for (int k = 0; k < 3; ++k)
-    shape_.weight[k] = 1 + ((4 * b[k] + b[(k + 1) % 3] + b[(k + 2) % 3]) / 6 - mean) / m;
-  shape_.weight[3] = 1;
   shape_.centroid = (c[0] + c[1] + c[2]) / 3.0;
   shape_.dipole = Vec3d(0, 0, 0);
-  for (int k = 0; k < 3; ++k)  // part k's centroid is halfway from the sender's to corner k
-    shape_.dipole += (c[k] - shape_.centroid) * (0.5 * (shape_.weight[k] - 1) / 4);
-  for (int s = 0; s < 4; ++s) shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
+  for (int s = 0; s < 4; ++s) {
+    shape_.weight[s] = 1 + (part_mean[s] - mean) / m;
+    shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
+    if (s < 3)  // corner part s's centroid is halfway from the sender's to corner s
+      shape_.dipole += (c[s] - shape_.centroid) * (0.5 * (shape_.weight[s] - 1) / 4);
+  }
   shape_.on = true;
 }
 
@@ -509,14 +533,14 @@ double Solver::element_reach(ElementId q) const {
   return element_form_factor(q) * hierarchy_.element(q).area;
 }
 
-void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const {
+double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const {
   const Element& el = hierarchy_.element(q);
   const Patch& sender = patches_[sender_];
   const Vec3d& n = hierarchy_.normal(q);
   const Vec3d centroid = hierarchy_.centroid(q);
   const double shot = (reflectance * current_shot_).luminance();
   in.pushdown_error = in.current_peak = 0;
-  if (!(shot > 0)) return;
+  if (!(shot > 0)) return -1;
   // Far from the sender, what matters is the second difference of F along each edge,
   // F(mid) - (F(a) + F(b)) / 2, and the point-to-area form A cos cos / (pi r^2) gives it
   // within a fraction (R/r)^2 of itself (R: the sender's radius), at a fraction of the
@@ -534,6 +558,7 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
   double far_at[3] = {0, 0, 0};
   if (far)
     for (int k = 0; k < 3; ++k) far_at[k] = far_form(receivers_[corner_receiver_[q][k]].point);
+  double mid_sum = 0;
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const CornerFormFactor& fa = corner_form_factor(q, k);
@@ -551,7 +576,9 @@ void Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Oracle
     const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);
     in.pushdown_error = std::max(in.pushdown_error, error);
     in.current_peak = std::max({in.current_peak, a, at_mid});
+    mid_sum += at_mid;
   }
+  return mid_sum / (3 * shot);
 }
 
 Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const {

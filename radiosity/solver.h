@@ -93,9 +93,9 @@ class Solver {
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
     Vec3d centre;                   // centre and radius of a sphere around the patch
     double radius = 0;
-    // Luminance at the patch's corners that is not unshot: the corner values minus
-    // this is the shape of its unshot radiosity (see shape_sender()).
-    std::array<double, 3> shot_at_corners{};
+    // Luminance at the patch's corners and edge midpoints (see shape_sender()) that is
+    // not unshot: the values there minus this are the shape of its unshot radiosity.
+    std::array<double, 6> shot_at_nodes{};
   };
 
   std::uint32_t brightest_patch() const { return brightest_; }
@@ -138,15 +138,17 @@ class Solver {
   // sender's shape (SolveOptions::shaped_senders) where it has one.
   double sender_closed_form(const Vec3d& x, const Vec3d& n) const;
   // The current sender's shape: its unshot radiosity, the mean m plus the deviation of
-  // the corners' unshot values (corner values minus Patch::shot_at_corners) from their
-  // mean, linear between them; as four midpoint sub-triangles (equal areas) with
-  // weights w = that radiosity at the part's centroid / m (the mean of w is 1: the
-  // power shot is the same). F to the shaped sender is the sum of w times F to each
-  // part: four closed forms within kShapeNear sender radii; beyond, F to the whole plus
-  // the parts' corrections (w - 1) times their point-to-area forms, to first order in
-  // the parts' offsets: the gradient of the point-to-area form at the sender's centroid
-  // times the weights' dipole, sum (w - 1) (part centroid - centroid) / 4 (relative
-  // error about (sender radius / distance)^2).
+  // the unshot values at its corners and edge midpoints (values there minus
+  // Patch::shot_at_nodes; a midpoint's value comes from the elements below it, so a
+  // refined sender is shaped by more than its corners) from their mean, linear on each
+  // of the four midpoint sub-triangles. Each part gets a weight w = its mean unshot
+  // radiosity / m (the parts have equal areas and the mean of w is 1: the power shot is
+  // the same). F to the shaped sender is the sum of w times F to each part: four closed
+  // forms within kShapeNear sender radii; beyond, F to the whole plus the parts'
+  // corrections (w - 1) times their point-to-area forms, to first order in the parts'
+  // offsets: the gradient of the point-to-area form at the sender's centroid times the
+  // weights' dipole, sum (w - 1) (part centroid - centroid) / 4 (relative error about
+  // (sender radius / distance)^2).
   struct SenderShape {
     bool on = false;
     std::array<std::array<Vec3d, 3>, 4> parts;
@@ -158,9 +160,14 @@ class Solver {
   // receivers, 1 radius leaves 0.29% from the reference, 1.5, 2 and 3 all 0.24%.
   static constexpr double kShapeNear = 1.5;
   void shape_sender();
+  // Luminance of the cumulated radiosity at point p of patch `root`'s surface: the
+  // leaf's corner values interpolated, plus what its ancestors still hold to push down.
+  double luminance_at(ElementId root, const Vec3d& p) const;
   // OracleInputs::pushdown_error and current_peak for element q and this shot's dB at
   // its corners.
-  void estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;
+  // Returns the mean over q's edge midpoints of the visible form factor (the rule
+  // exact for quadratics: q's mean form factor), or -1 when it did not estimate.
+  double estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
   // estimate_pushdown_error(): distance, in sender radii, from which the midpoint
