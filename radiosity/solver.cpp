@@ -267,35 +267,47 @@ double Solver::unshot_fraction() const { return unshot_magnitude_ / emitted_tota
 // Fraction of the power patch `id` shoots that reaches no front face (it leaves the
 // scene or meets a black back side): cosine-weighted rays from points on the patch,
 // stratified over the hemisphere, once per patch. Exactly 0 in a closed room.
+// A first pass with a quarter of the rays settles most senders: where none of them is
+// lost (a closed room), the answer is 0 and the full pass is skipped; otherwise the full
+// pass alone gives it. (An opening below about 1/256 of a sender's cosine-weighted view
+// can go unseen by the first pass, as one below 1/1024 can by the full one.)
 double Solver::lost_fraction(std::uint32_t id) {
   Patch& p = patches_[id];
   if (p.lost >= 0) return p.lost;
   const Vec3d n = p.normal;
   const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
   const Vec3d b = OpenMesh::cross(n, t);
-  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
-  // One row of strata per task, each row with its own seed: the counts are the same
-  // for any number of threads.
-  std::vector<std::array<int, 2>> rows(static_cast<std::size_t>(side));
-  tbb::parallel_for(0, side, [&](int i) {
-    Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id) ^ mix(static_cast<std::uint64_t>(i) + 1))};
-    int escaped = 0, back = 0;
-    for (int j = 0; j < side; ++j) {
-      const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
-      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-      const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
-      const Vec3d origin = point_on_triangle(p.corners, rng.uniform(), rng.uniform());
-      const auto hit = visibility_->trace(origin, n, dir);
-      escaped += hit == Visibility::Hit::nothing;
-      back += hit == Visibility::Hit::back;
+  // side x side strata; one row per task, each row with its own seed: the counts are
+  // the same for any number of threads.
+  auto cast = [&](int side, std::uint64_t pass) {
+    std::vector<std::array<int, 2>> rows(static_cast<std::size_t>(side));
+    tbb::parallel_for(0, side, [&](int i) {
+      Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id) ^ mix(static_cast<std::uint64_t>(i) + 1) ^ pass)};
+      int escaped = 0, back = 0;
+      for (int j = 0; j < side; ++j) {
+        const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
+        const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+        const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+        const Vec3d origin = point_on_triangle(p.corners, rng.uniform(), rng.uniform());
+        const auto hit = visibility_->trace(origin, n, dir);
+        escaped += hit == Visibility::Hit::nothing;
+        back += hit == Visibility::Hit::back;
+      }
+      rows[static_cast<std::size_t>(i)] = {escaped, back};
+    });
+    std::array<int, 2> sum{0, 0};
+    for (const auto& row : rows) {
+      sum[0] += row[0];
+      sum[1] += row[1];
     }
-    rows[static_cast<std::size_t>(i)] = {escaped, back};
-  });
-  int escaped = 0, back = 0;
-  for (const auto& row : rows) {
-    escaped += row[0];
-    back += row[1];
+    return sum;
+  };
+  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
+  if (side >= 4) {
+    const auto [escaped, back] = cast(side / 2, 0x9A55ull << 40);
+    if (escaped + back == 0) return p.escaped = p.lost = 0.0;
   }
+  const auto [escaped, back] = cast(side, 0);
   const double total = static_cast<double>(side) * side;
   p.escaped = escaped / total;
   p.lost = (escaped + back) / total;
