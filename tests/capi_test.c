@@ -62,6 +62,16 @@ static dynrad_scene* create_box(const Box* box, const dynrad_material* materials
   return scene;
 }
 
+/* A box lit by its ceiling (the +z face): `wall` on the five others. */
+static dynrad_scene* create_ceiling_lit_box(double sx, double sy, double sz, dynrad_material wall,
+                                            dynrad_material lamp) {
+  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
+  const dynrad_material materials[2] = {wall, lamp};
+  Box box;
+  make_box(&box, sx, sy, sz, faces);
+  return create_box(&box, materials, 2);
+}
+
 static dynrad_options* options_with(double patch_size, double converge) {
   dynrad_options* options = NULL;
   CHECK(dynrad_options_create(&options) == DYNRAD_OK, "%s", dynrad_last_error());
@@ -224,11 +234,7 @@ static void test_simplify(void) {
  * `--flat-senders`): in a room lit by its ceiling the walls' light is uneven, so the two
  * differ, but both are the same room's light: within a few percent at every vertex. */
 static void test_shaped_senders(void) {
-  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
-  const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.0, 10.0, "ceiling")};
-  Box box;
-  make_box(&box, 3, 2, 1.5, faces);
-  dynrad_scene* scene = create_box(&box, materials, 2);
+  dynrad_scene* scene = create_ceiling_lit_box(3, 2, 1.5, grey(0.6, 0.0, "wall"), grey(0.0, 10.0, "ceiling"));
   float* b[2] = {NULL, NULL};
   size_t n[2] = {0, 0};
   for (int shaped = 0; shaped < 2; ++shaped) {
@@ -249,11 +255,7 @@ static void test_shaped_senders(void) {
 }
 
 static void test_lit_room_energy(void) {
-  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
-  const dynrad_material materials[2] = {grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling")};
-  Box box;
-  make_box(&box, 3, 2, 1.5, faces);
-  dynrad_scene* scene = create_box(&box, materials, 2);
+  dynrad_scene* scene = create_ceiling_lit_box(3, 2, 1.5, grey(0.6, 0.0, "wall"), grey(0.6, 10.0, "ceiling"));
   dynrad_options* options = options_with(0.6, 1e-4);
   double totals[2] = {0, 0};
   for (int run = 0; run < 2; ++run) {
@@ -333,11 +335,7 @@ static int on_progress(uint64_t shot, double unshot_fraction, void* user) {
 }
 
 static void test_stopping(void) {
-  const uint32_t faces[6] = {0, 0, 0, 0, 0, 1};
-  const dynrad_material materials[2] = {grey(0.7, 0.0, "wall"), grey(0.5, 5.0, "lamp")};
-  Box box;
-  make_box(&box, 2, 2, 2, faces);
-  dynrad_scene* scene = create_box(&box, materials, 2);
+  dynrad_scene* scene = create_ceiling_lit_box(2, 2, 2, grey(0.7, 0.0, "wall"), grey(0.5, 5.0, "lamp"));
   dynrad_options* options = options_with(0.25, 1e-9);
   volatile int cancel = 0;
   for (int by_flag = 0; by_flag < 2; ++by_flag) {

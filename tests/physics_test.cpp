@@ -65,19 +65,23 @@ OracleThresholds paper_oracle() {
   return t;
 }
 
-Solved prepare(const PolygonSoup& soup, double patch_size, SolveOptions options, const Config& config) {
+Solved prepare(const PolygonSoup& soup, double patch_size, SolveOptions options, const RefineSettings& refine) {
   TriangleSoup clean;
   cleanup(soup, clean);
   Solved s;
   s.scene = std::make_unique<SceneMesh>(clean);
   make_patches(*s.scene, patch_size);
   s.hierarchy = std::make_unique<ElementHierarchy>(*s.scene);
+  s.solver = std::make_unique<Solver>(*s.scene, *s.hierarchy, options, refine);
+  return s;
+}
+
+Solved prepare(const PolygonSoup& soup, double patch_size, SolveOptions options, const Config& config) {
   RefineSettings refine;
   refine.method = config.method;
   refine.dynamic = config.oracle;
   refine.max_level = 2;
-  s.solver = std::make_unique<Solver>(*s.scene, *s.hierarchy, options, refine);
-  return s;
+  return prepare(soup, patch_size, options, refine);
 }
 
 // Every physics fact holds for every method.
@@ -330,13 +334,7 @@ TEST(ShapedSenders, CloserToAFineSolutionThanEvenSenders) {
     refine.method = levels > 0 ? Method::adaptive : Method::progressive;
     refine.adaptive_threshold = 0;  // every element splits: uniform receivers
     refine.max_level = levels;
-    TriangleSoup clean;
-    cleanup(soup, clean);
-    Solved s;
-    s.scene = std::make_unique<SceneMesh>(clean);
-    make_patches(*s.scene, patch);
-    s.hierarchy = std::make_unique<ElementHierarchy>(*s.scene);
-    s.solver = std::make_unique<Solver>(*s.scene, *s.hierarchy, options, refine);
+    Solved s = prepare(soup, patch, options, refine);
     s.solver->run();
     return s;
   };
