@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,7 @@ struct ObjLines {
   std::vector<std::uint32_t> face_usemtl;   // index into usemtl_names, or UINT32_MAX
   std::vector<std::string> usemtl_names;    // in order of first use
   std::vector<std::uint32_t> usemtl_lines;  // line of first use
+  std::size_t vertex_count = 0;             // `v` statements
 };
 
 std::vector<std::string> split_ws(const std::string& s) {
@@ -63,6 +65,16 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const auto tokens = split_ws(line);
     if (tokens.empty() || tokens[0][0] == '#') continue;
+    // Control characters (a vertical tab, a form feed...) are whitespace to this check
+    // but not to tinyobjloader, so the two would read different statements.
+    for (const char c : line)
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        throw InputError(path, line_no,
+                         std::string("contains the control character ") + code +
+                             ", which OBJ readers do not agree on. Remove it (only spaces and tabs separate words).");
+      }
     const std::string& key = tokens[0];
     const auto at = static_cast<std::uint32_t>(line_no);
     if (key == "v") {
@@ -116,6 +128,7 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
       }
     }
   }
+  result.vertex_count = vertex_count;
   return result;
 }
 
@@ -160,6 +173,10 @@ PolygonSoup detail::read_obj(const std::string& path) {
   PolygonSoup soup;
   soup.files.push_back(path);
   const auto& attrib = reader.GetAttrib();
+  if (attrib.vertices.size() / 3 != lines.vertex_count)
+    throw InputError(path, 0,
+                     "found " + std::to_string(lines.vertex_count) + " vertex statements but the OBJ parser read " +
+                         std::to_string(attrib.vertices.size() / 3) + " vertices; the file may be malformed.");
   soup.points.reserve(attrib.vertices.size() / 3);
   for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
     soup.points.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
@@ -235,8 +252,12 @@ PolygonSoup detail::read_obj(const std::string& path) {
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
       const std::size_t n = shape.mesh.num_face_vertices[f];
       std::vector<std::uint32_t> poly(n);
-      for (std::size_t k = 0; k < n; ++k)
-        poly[k] = static_cast<std::uint32_t>(shape.mesh.indices[offset + k].vertex_index);
+      for (std::size_t k = 0; k < n; ++k) {
+        const int index = shape.mesh.indices[offset + k].vertex_index;
+        if (index < 0 || static_cast<std::size_t>(index) >= soup.points.size())
+          throw InputError(path, lines.face_lines[face], "face refers to a vertex the OBJ parser did not read.");
+        poly[k] = static_cast<std::uint32_t>(index);
+      }
       offset += n;
       const std::uint32_t u = lines.face_usemtl[face];
       soup.polygons.push_back(std::move(poly));

@@ -186,6 +186,25 @@ TEST(ImportValidation, ReflectanceOfOneIsRefusedNamingTheMaterial) {
   }
 }
 
+// Found by the OBJ fuzzer: a vertex line led by a vertical tab was a vertex to the line
+// check (which splits at any whitespace) but not to tinyobjloader, so a face could refer
+// to a vertex that was never read. Control characters are now refused, by line.
+TEST(ImportValidation, ControlCharacterIsRefusedWithItsLine) {
+  TempDir dir;
+  const std::string obj = dir.write("vt.obj", "v 0 0 0\nv 1 0 0\n\vv 0 1 0\nf 1 2 3\n");
+  try {
+    read_input(obj);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 3u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0x0B"), std::string::npos) << e.what();
+  }
+  // Tabs stay fine.
+  const PolygonSoup soup = read_input(dir.write("tab.obj", "v 0 0 0\nv\t1 0 0\n\tv 0 1 0\nf 1 2 3\n"));
+  EXPECT_EQ(soup.points.size(), 3u);
+  EXPECT_EQ(soup.polygons.size(), 1u);
+}
+
 TEST(ImportValidation, UndefinedMaterialIsRefusedUnlessASceneDefinesIt) {
   TempDir dir;
   const std::string obj = dir.write("u.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl ghost\nf 1 2 3\n");
