@@ -309,8 +309,8 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.1));
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
-                   "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped linearly "
-                   "between its corners");
+                   "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
+                   "corners and edge midpoints");
   command->add_flag("--ambient", options->solve.ambient_display,
                    "Add the ambient estimate of light not yet shot to the written values (Cohen et al. 1988); "
                    "useful with --time-limit");

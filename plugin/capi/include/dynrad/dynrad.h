@@ -143,8 +143,8 @@ DYNRAD_API dynrad_status dynrad_options_set_negligible_share(dynrad_options* opt
  * `dynrad solve`; 0: keep every triangle, as `--no-simplify`). Lossless for the light;
  * the result's mesh is a refinement of the merged one. */
 DYNRAD_API dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on);
-/* Shape each shot's unshot radiosity linearly between the sender's corners (nonzero:
- * on, the default) or shoot it evenly (0: `--flat-senders`). */
+/* Shape each shot's unshot radiosity by the sender's corners and edge midpoints
+ * (nonzero: on, the default) or shoot it evenly (0: `--flat-senders`). */
 DYNRAD_API dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
  * command line (the 99th percentile of lit vertices maps to 0.9). */
