@@ -7,6 +7,7 @@
 //    peak resident memory and resident bytes per element.
 //
 // Usage: bench_scale MODEL.obj [shots for scaling (200)] [converge (0.01)] [repeats (3)]
+//   (converge 0 measures the thread scaling only)
 //   e.g. python3 samples/make_building.py /tmp/b100k.obj --cell 0.25
 //        build/bench/bench_scale /tmp/b100k.obj
 #include "bench/median.h"
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
               median(one), cores, median(many), median(one) / median(many));
 
   // 2. To the target.
+  if (!(converge > 0)) return 0;
   const rad::SolveReport report = solve(path, 0, 0, converge);
   std::printf("solve to %.1f%% unshot: %zu shots, %.1f s, %zu elements, unshot %.2f%%, peak resident %.0f MiB, "
               "%.0f bytes per element (resident / elements)\n",

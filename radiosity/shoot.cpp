@@ -72,6 +72,7 @@ bool Solver::shoot_once() {
   // gather the shots before this one and then receive this one like the rest.)
 
   const int max_generation = 2 * refine_.max_level;
+  constexpr std::size_t kChunks = 256;  // per level, at most (see below)
   const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<ElementId> ready;  // existing elements of the next level
@@ -87,6 +88,24 @@ bool Solver::shoot_once() {
   };
   std::vector<double> reach;  // per terminal
   std::vector<Decision> decisions;
+  // What a chunk of a level adds to the lists and counters (then: where it writes).
+  struct Tally {
+    std::size_t passed = 0, subdivide = 0, ready = 0, terminals = 0, transfers = 0, patch_transfers = 0;
+    void count(const Element& el) {  // a transfer, as counted below
+      ++transfers;
+      if (el.generation > 0) ++patch_transfers;
+    }
+    Tally& operator+=(const Tally& o) {
+      passed += o.passed;
+      subdivide += o.subdivide;
+      ready += o.ready;
+      terminals += o.terminals;
+      transfers += o.transfers;
+      patch_transfers += o.patch_transfers;
+      return *this;
+    }
+  };
+  std::vector<Tally> tallies;
   auto count_transfer = [this](const Element& el) {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
@@ -101,78 +120,116 @@ bool Solver::shoot_once() {
     // shoot(i, q), the oracle and the effect on the values, for every q of this level
     // in parallel: each reads and writes only q and q's own children (the next level),
     // so the elements of a level are independent (the form factors at q's corners are
-    // shared with its neighbours; see compute_corner_form_factors). The lists and
-    // counters follow in a serial pass in level order, so the result does not depend on
-    // the number of threads.
+    // shared with its neighbours; see compute_corner_form_factors). The level's lists
+    // and counters are then built in level order, so the result does not depend on the
+    // number of threads: the level is cut into at most 256 chunks (by its size alone),
+    // each chunk counts what it adds to each list, a prefix sum places the chunks, and
+    // a second pass writes every entry at its place.
     decisions.resize(level.size());
-    parallel_for_index(level.size(), 16, [&](std::size_t n) {
-      const ElementId q = level[n];
-      const Element& el = hierarchy_.element(q);
-      const Patch& patch = patches_[el.patch];
-      // Most are known already: level 0's from receiving_patches(), deeper levels' mostly
-      // from the overlap with mesh refinement below.
-      compute_corner_form_factors(q);
-      OracleInputs& in = decisions[n].in;
-      in = OracleInputs{};
-      // An element gathered during this shot already holds this shot's transfer.
-      const bool holds_shot = gathered_in_[q] == report_.iterations + 1;
-      for (int k = 0; k < 3; ++k) {
-        in.current[k] = patch.reflectance * shot * form_factor(q, k);
-        in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
-      }
-      const bool can_split = el.generation < max_generation;
-      const bool odd = el.generation % 2 == 1;
-      // The push-down error costs three closed forms; it is estimated only where the
-      // oracle's first condition (the cumulated gradient) holds and it can decide. Its
-      // midpoints also give q's mean form factor, should the shot stop at q.
-      double mean_form_factor = -1;
-      if (refine_.method == Method::dynamic && can_split && !odd &&
-          refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
-          cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient) {
-        mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in);
-        in.ambient = (patch.reflectance * ambient_now).luminance();
-      }
-      bool go_on = false;
-      switch (refine_.method) {
-        case Method::progressive:
-          break;
-        case Method::adaptive:
-          go_on = !el.is_leaf() ||
-                  (can_split && (std::binary_search(complete_split.begin(), complete_split.end(), q) ||
-                                 adaptive_oracle(in, refine_.adaptive_threshold)));
-          break;
-        case Method::dynamic:
-          go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
-          break;
-      }
-      decisions[n].go_on = go_on;
-      if (go_on) {
-        flush(q);  // the children must hold what earlier shots pushed down before they are shot
-      } else {
-        // The shot stops at q: q takes dB, and what is already below q gets it
-        // interpolated from q's corners (push-down) instead of a transfer of its own.
-        value_[q] = in.cumulated;
-        push_down(q, in.current);
-        decisions[n].reach = mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q);
+    const std::size_t chunk = (level.size() + kChunks - 1) / kChunks;
+    const std::size_t chunks = (level.size() + chunk - 1) / chunk;
+    tallies.assign(chunks, Tally{});
+    parallel_for_index(chunks, 16, [&](std::size_t c) {
+      Tally& tally = tallies[c];
+      for (std::size_t n = c * chunk; n < std::min(level.size(), (c + 1) * chunk); ++n) {
+        const ElementId q = level[n];
+        const Element& el = hierarchy_.element(q);
+        const Patch& patch = patches_[el.patch];
+        // Most are known already: level 0's from receiving_patches(), deeper levels'
+        // mostly from the overlap with mesh refinement below.
+        compute_corner_form_factors(q);
+        OracleInputs& in = decisions[n].in;
+        in = OracleInputs{};
+        // An element gathered during this shot already holds this shot's transfer.
+        const bool holds_shot = gathered_in_[q] == report_.iterations + 1;
+        for (int k = 0; k < 3; ++k) {
+          in.current[k] = patch.reflectance * shot * form_factor(q, k);
+          in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
+        }
+        const bool can_split = el.generation < max_generation;
+        const bool odd = el.generation % 2 == 1;
+        // The push-down error costs three closed forms; it is estimated only where the
+        // oracle's first condition (the cumulated gradient) holds and it can decide. Its
+        // midpoints also give q's mean form factor, should the shot stop at q.
+        double mean_form_factor = -1;
+        if (refine_.method == Method::dynamic && can_split && !odd &&
+            refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
+            cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient) {
+          mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in);
+          in.ambient = (patch.reflectance * ambient_now).luminance();
+        }
+        bool go_on = false;
+        switch (refine_.method) {
+          case Method::progressive:
+            break;
+          case Method::adaptive:
+            go_on = !el.is_leaf() ||
+                    (can_split && (std::binary_search(complete_split.begin(), complete_split.end(), q) ||
+                                   adaptive_oracle(in, refine_.adaptive_threshold)));
+            break;
+          case Method::dynamic:
+            go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
+            break;
+        }
+        decisions[n].go_on = go_on;
+        if (go_on) {
+          flush(q);  // the children must hold what earlier shots pushed down before they are shot
+          ++tally.passed;
+          if (el.is_leaf())
+            ++tally.subdivide;
+          else
+            tally.ready += 2;
+          // dynamic: a whole paper level the shot passes through
+          if (refine_.method == Method::dynamic && !odd) tally.count(el);
+        } else {
+          // The shot stops at q: q takes dB, and what is already below q gets it
+          // interpolated from q's corners (push-down) instead of a transfer of its own.
+          value_[q] = in.cumulated;
+          push_down(q, in.current);
+          decisions[n].reach = mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q);
+          ++tally.terminals;
+          tally.count(el);
+        }
       }
     });
-    ready.clear();
-    for (std::size_t n = 0; n < level.size(); ++n) {
-      const ElementId q = level[n];
-      const Element& el = hierarchy_.element(q);
-      if (decisions[n].go_on) {
-        // dynamic: a whole paper level the shot passes through
-        if (refine_.method == Method::dynamic && el.generation % 2 == 0) count_transfer(el);
-        passed.emplace_back(q, decisions[n].in.current);
-        if (el.is_leaf())
-          subdivide.push_back(q);
-        else
-          ready.insert(ready.end(), el.children.begin(), el.children.end());
-      } else {
-        terminals.push_back(q);
-        reach.push_back(decisions[n].reach);
-        count_transfer(el);
+    // The places: chunk c's entries follow those of the chunks before it.
+    Tally total;
+    total.terminals = terminals.size();
+    for (Tally& tally : tallies) {
+      const Tally own = tally;
+      tally = total;  // now: where chunk c starts writing
+      total += own;
+    }
+    passed.resize(total.passed);
+    subdivide.resize(total.subdivide);
+    ready.resize(total.ready);
+    terminals.resize(total.terminals);
+    reach.resize(total.terminals);
+    report_.energy_transfers += total.transfers;
+    report_.patch_element_transfers += total.patch_transfers;
+    auto place = [&](std::size_t c) {
+      Tally at = tallies[c];
+      for (std::size_t n = c * chunk; n < std::min(level.size(), (c + 1) * chunk); ++n) {
+        const ElementId q = level[n];
+        if (decisions[n].go_on) {
+          const Element& el = hierarchy_.element(q);
+          passed[at.passed++] = {q, decisions[n].in.current};
+          if (el.is_leaf()) {
+            subdivide[at.subdivide++] = q;
+          } else {
+            ready[at.ready++] = el.children[0];
+            ready[at.ready++] = el.children[1];
+          }
+        } else {
+          terminals[at.terminals] = q;
+          reach[at.terminals++] = decisions[n].reach;
+        }
       }
+    };
+    if (level.size() >= 4096) {
+      tbb::parallel_for(std::size_t(0), chunks, place);
+    } else {  // a short level costs less than waking the other threads
+      for (std::size_t c = 0; c < chunks; ++c) place(c);
     }
     // subdivide(q). New elements start from their parent's values before this shot
     // (dB is added to the parent below) and receive the shot at the next level.

@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_group.h>
 
 #include <unistd.h>
 
@@ -609,13 +610,14 @@ Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const
 
 void Solver::initialise_new_elements() {
   const std::size_t count = hierarchy_.element_count();
-  register_receivers(static_cast<ElementId>(initialised_));
   const ElementId first = static_cast<ElementId>(initialised_);
+  if (count == first) return;
   // The new entries are written below, in parallel (their memory is touched first there).
   value_.resize_for_overwrite(count);
   pending_.resize_for_overwrite(count);
   gathered_in_.resize_for_overwrite(count);
   if (refine_.method == Method::adaptive || refine_.new_elements == RefineSettings::NewElements::gather) {
+    register_receivers(first);
     for (ElementId e = first; e < count; ++e) {
       pending_[e] = {};
       gathered_in_[e] = 0;
@@ -628,6 +630,27 @@ void Solver::initialise_new_elements() {
   // so each takes its values from its nearest ancestor that already had values: the
   // same as going through the new parents, since both rules reproduce a linear (or
   // constant) function on the flat ancestor.
+  // Meanwhile another thread registers the new receivers (serial: a hash map); neither
+  // reads what the other writes.
+  if (count - first < 1024) {  // too few to wake the other threads for
+    register_receivers(first);
+    initialise_values(first, count);
+    initialised_ = count;
+    return;
+  }
+  tbb::task_group registering;
+  registering.run([this, first] { register_receivers(first); });
+  try {
+    initialise_values(first, count);
+  } catch (...) {
+    registering.wait();
+    throw;
+  }
+  registering.wait();
+  initialised_ = count;
+}
+
+void Solver::initialise_values(ElementId first, std::size_t count) {
   parallel_for_index(count - first, 1024, [&](std::size_t n) {
     const ElementId e = first + static_cast<ElementId>(n);
     pending_[e] = {};
@@ -643,7 +666,6 @@ void Solver::initialise_new_elements() {
       for (int k = 0; k < 3; ++k) value_[e][k] = interpolate(source, p, hierarchy_.position(el.corners[k]));
     }
   });
-  initialised_ = count;
 }
 
 void Solver::push_down(ElementId q, const std::array<Rgb, 3>& delta) {

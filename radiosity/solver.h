@@ -177,6 +177,7 @@ class Solver {
   static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
+  void initialise_values(ElementId first, std::size_t count);  // its values, from the parents
   // Push-down: dB given at q's corners reaches every element below q, interpolated
   // linearly. It is lazy (exact, since interpolation is linear): q keeps the sum as
   // pending, and flush(q) hands it to q's children when the walk enters them.

@@ -7,15 +7,31 @@
 #   scripts/fuzz.sh              # every target, FUZZ_SECONDS (default 20) each
 #   scripts/fuzz.sh obj scene    # only these targets
 #   FUZZ_SECONDS=600 scripts/fuzz.sh ply
-#   FUZZ_SEED=1 scripts/fuzz.sh  # the same mutations every run (CI), up to the time limit
+#   FUZZ_SEED=1 scripts/fuzz.sh  # the same mutations every run, up to the time limit
+#   FUZZ_SEED=1 FUZZ_RUNS=ci scripts/fuzz.sh
+#                                # CI: the same inputs on any machine, a fixed number per
+#                                # target (about 20 s each on the 2-core reference machine;
+#                                # FUZZ_SECONDS is then only a guard, default 300 s)
+#   FUZZ_RUNS=100000 scripts/fuzz.sh   # that many inputs per target
 #
 # The corpus in build-fuzz/corpus/<target> is seeded from tests/fuzz/seeds and samples/
 # on every run and keeps what the fuzzer finds between local runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-seconds=${FUZZ_SECONDS:-20}
+runs=${FUZZ_RUNS:-}
+if [ -n "$runs" ]; then seconds=${FUZZ_SECONDS:-300}; else seconds=${FUZZ_SECONDS:-20}; fi
 seed_value=${FUZZ_SEED:-0}  # 0: libFuzzer picks one
+# FUZZ_RUNS=ci: inputs per target that took about 20 s each in CI (2026-11-22). A count
+# rather than a time makes a fixed seed give the same verdict on a faster or slower
+# machine (a time limit let one CI run find a bug that the run before had not reached).
+ci_runs() {
+  case $1 in
+    obj) echo 6000 ;;
+    stl) echo 50000 ;;
+    *) echo 60000 ;;
+  esac
+}
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene)
 
@@ -63,8 +79,14 @@ for target in "${targets[@]}"; do
   seed "$target"
   dict=()
   [ -f "tests/fuzz/$target.dict" ] && dict=(-dict="tests/fuzz/$target.dict")
-  echo "fuzz: $target for ${seconds}s"
-  if ! build-fuzz/tests/fuzz/fuzz_"$target" build-fuzz/corpus/"$target" "${dict[@]}" \
+  limit=()
+  case $runs in
+    "") echo "fuzz: $target for ${seconds}s" ;;
+    ci) limit=(-runs="$(ci_runs "$target")") ;;
+    *) limit=(-runs="$runs") ;;
+  esac
+  [ ${#limit[@]} -eq 0 ] || echo "fuzz: $target, ${limit[0]#-runs=} inputs (at most ${seconds}s)"
+  if ! build-fuzz/tests/fuzz/fuzz_"$target" build-fuzz/corpus/"$target" "${dict[@]}" "${limit[@]}" \
       -max_total_time="$seconds" -seed="$seed_value" -timeout=15 -rss_limit_mb=2560 -max_len=16384 \
       -artifact_prefix="build-fuzz/artifacts/$target-" -print_final_stats=1 \
       > "build-fuzz/fuzz_$target.log" 2>&1; then
