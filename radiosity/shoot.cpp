@@ -72,7 +72,6 @@ bool Solver::shoot_once() {
   // gather the shots before this one and then receive this one like the rest.)
 
   const int max_generation = 2 * refine_.max_level;
-  constexpr std::size_t kChunks = 256;  // per level, at most (see below)
   const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<ElementId> ready;  // existing elements of the next level
@@ -81,31 +80,7 @@ bool Solver::shoot_once() {
   // again to complete the 1 -> 4 split. (Dynamic needs no marks: it reaches odd
   // generations only by going on from an even one, so it always completes the split.)
   std::vector<ElementId> complete_split, complete_split_next;
-  struct Decision {
-    OracleInputs in;
-    bool go_on = false;
-    double reach = 0;  // where the shot stops: see element_reach()
-  };
   std::vector<double> reach;  // per terminal
-  std::vector<Decision> decisions;
-  // What a chunk of a level adds to the lists and counters (then: where it writes).
-  struct Tally {
-    std::size_t passed = 0, subdivide = 0, ready = 0, terminals = 0, transfers = 0, patch_transfers = 0;
-    void count(const Element& el) {  // a transfer, as counted below
-      ++transfers;
-      if (el.generation > 0) ++patch_transfers;
-    }
-    Tally& operator+=(const Tally& o) {
-      passed += o.passed;
-      subdivide += o.subdivide;
-      ready += o.ready;
-      terminals += o.terminals;
-      transfers += o.transfers;
-      patch_transfers += o.patch_transfers;
-      return *this;
-    }
-  };
-  std::vector<Tally> tallies;
   auto count_transfer = [this](const Element& el) {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
@@ -121,16 +96,15 @@ bool Solver::shoot_once() {
     // in parallel: each reads and writes only q and q's own children (the next level),
     // so the elements of a level are independent (the form factors at q's corners are
     // shared with its neighbours; see compute_corner_form_factors). The level's lists
-    // and counters are then built in level order, so the result does not depend on the
-    // number of threads: the level is cut into at most 256 chunks (by its size alone),
-    // each chunk counts what it adds to each list, a prefix sum places the chunks, and
-    // a second pass writes every entry at its place.
-    decisions.resize(level.size());
+    // and counters are built in level order, so that the result does not depend on the
+    // number of threads: the level is cut into at most kChunks chunks (by its size
+    // alone), each chunk makes its own lists, and the chunks' lists are joined in order.
     const std::size_t chunk = (level.size() + kChunks - 1) / kChunks;
     const std::size_t chunks = (level.size() + chunk - 1) / chunk;
-    tallies.assign(chunks, Tally{});
+    if (walk_chunks_.size() < chunks) walk_chunks_.resize(chunks);
     parallel_for_index(chunks, 16, [&](std::size_t c) {
-      Tally& tally = tallies[c];
+      WalkChunk& out = walk_chunks_[c];
+      out.clear();
       for (std::size_t n = c * chunk; n < std::min(level.size(), (c + 1) * chunk); ++n) {
         const ElementId q = level[n];
         const Element& el = hierarchy_.element(q);
@@ -138,8 +112,7 @@ bool Solver::shoot_once() {
         // Most are known already: level 0's from receiving_patches(), deeper levels'
         // mostly from the overlap with mesh refinement below.
         compute_corner_form_factors(q);
-        OracleInputs& in = decisions[n].in;
-        in = OracleInputs{};
+        OracleInputs in{};
         // An element gathered during this shot already holds this shot's transfer.
         const bool holds_shot = gathered_in_[q] == report_.iterations + 1;
         for (int k = 0; k < 3; ++k) {
@@ -171,65 +144,36 @@ bool Solver::shoot_once() {
             go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
             break;
         }
-        decisions[n].go_on = go_on;
         if (go_on) {
           flush(q);  // the children must hold what earlier shots pushed down before they are shot
-          ++tally.passed;
+          out.passed.emplace_back(q, in.current);
           if (el.is_leaf())
-            ++tally.subdivide;
+            out.subdivide.push_back(q);
           else
-            tally.ready += 2;
+            out.ready.insert(out.ready.end(), el.children.begin(), el.children.end());
           // dynamic: a whole paper level the shot passes through
-          if (refine_.method == Method::dynamic && !odd) tally.count(el);
+          if (refine_.method == Method::dynamic && !odd) out.count(el);
         } else {
           // The shot stops at q: q takes dB, and what is already below q gets it
           // interpolated from q's corners (push-down) instead of a transfer of its own.
           value_[q] = in.cumulated;
           push_down(q, in.current);
-          decisions[n].reach = mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q);
-          ++tally.terminals;
-          tally.count(el);
+          out.terminals.push_back(q);
+          out.reach.push_back(mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q));
+          out.count(el);
         }
       }
     });
-    // The places: chunk c's entries follow those of the chunks before it.
-    Tally total;
-    total.terminals = terminals.size();
-    for (Tally& tally : tallies) {
-      const Tally own = tally;
-      tally = total;  // now: where chunk c starts writing
-      total += own;
-    }
-    passed.resize(total.passed);
-    subdivide.resize(total.subdivide);
-    ready.resize(total.ready);
-    terminals.resize(total.terminals);
-    reach.resize(total.terminals);
-    report_.energy_transfers += total.transfers;
-    report_.patch_element_transfers += total.patch_transfers;
-    auto place = [&](std::size_t c) {
-      Tally at = tallies[c];
-      for (std::size_t n = c * chunk; n < std::min(level.size(), (c + 1) * chunk); ++n) {
-        const ElementId q = level[n];
-        if (decisions[n].go_on) {
-          const Element& el = hierarchy_.element(q);
-          passed[at.passed++] = {q, decisions[n].in.current};
-          if (el.is_leaf()) {
-            subdivide[at.subdivide++] = q;
-          } else {
-            ready[at.ready++] = el.children[0];
-            ready[at.ready++] = el.children[1];
-          }
-        } else {
-          terminals[at.terminals] = q;
-          reach[at.terminals++] = decisions[n].reach;
-        }
-      }
-    };
-    if (level.size() >= 4096) {
-      tbb::parallel_for(std::size_t(0), chunks, place);
-    } else {  // a short level costs less than waking the other threads
-      for (std::size_t c = 0; c < chunks; ++c) place(c);
+    ready.clear();
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const WalkChunk& out = walk_chunks_[c];
+      passed.insert(passed.end(), out.passed.begin(), out.passed.end());
+      subdivide.insert(subdivide.end(), out.subdivide.begin(), out.subdivide.end());
+      ready.insert(ready.end(), out.ready.begin(), out.ready.end());
+      terminals.insert(terminals.end(), out.terminals.begin(), out.terminals.end());
+      reach.insert(reach.end(), out.reach.begin(), out.reach.end());
+      report_.energy_transfers += out.transfers;
+      report_.patch_element_transfers += out.patch_transfers;
     }
     // subdivide(q). New elements start from their parent's values before this shot
     // (dB is added to the parent below) and receive the shot at the next level.

@@ -632,7 +632,7 @@ void Solver::initialise_new_elements() {
   // constant) function on the flat ancestor.
   // Meanwhile another thread registers the new receivers (serial: a hash map); neither
   // reads what the other writes.
-  if (count - first < 1024) {  // too few to wake the other threads for
+  if (count - first < 256) {  // too few to wake the other threads for
     register_receivers(first);
     initialise_values(first, count);
     initialised_ = count;

@@ -193,6 +193,30 @@ class Solver {
   void account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
                          std::uint32_t sender, const Rgb& shot_radiosity);
 
+  // A chunk of one level of a shot's walk: what its elements add to the shot's lists
+  // and counters, in level order (see shoot_once()). Kept between shots for their
+  // storage.
+  struct WalkChunk {
+    std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // the shot goes on below
+    std::vector<ElementId> subdivide, ready, terminals;
+    std::vector<double> reach;  // per terminal
+    std::size_t transfers = 0, patch_transfers = 0;
+    void count(const Element& el) {  // a transfer, as the paper counts them
+      ++transfers;
+      if (el.generation > 0) ++patch_transfers;
+    }
+    void clear() {
+      passed.clear();
+      subdivide.clear();
+      ready.clear();
+      terminals.clear();
+      reach.clear();
+      transfers = patch_transfers = 0;
+    }
+  };
+  std::vector<WalkChunk> walk_chunks_;
+  static constexpr std::size_t kChunks = 256;  // per level, at most
+
   SceneMesh& scene_;
   ElementHierarchy& hierarchy_;
   SolveOptions options_;
