@@ -63,4 +63,48 @@ double point_to_polygon(const Vec3d& x, const Vec3d& n, const Vec3d* corners, in
   return std::abs(sum) / (2.0 * M_PI);
 }
 
+namespace {
+
+// One edge's term of Lambert's sum, gamma n . (R0 x R1) / |R0 x R1|, for the edge a -> b
+// seen from x.
+double lambert_term(const Vec3d& x, const Vec3d& n, const Vec3d& a, const Vec3d& b) {
+  const Vec3d r0 = a - x, r1 = b - x;
+  const Vec3d c = OpenMesh::cross(r0, r1);
+  const double length = c.norm();
+  if (length <= 0) return 0.0;
+  return angle_between(length, OpenMesh::dot(r0, r1)) * OpenMesh::dot(n, c) / length;
+}
+
+}  // namespace
+
+double point_to_quartered_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
+                                   const Vec3d& front) {
+  const Vec3d& c0 = corners[0];
+  const Vec3d& c1 = corners[1];
+  const Vec3d& c2 = corners[2];
+  const Vec3d m01 = (c0 + c1) * 0.5, m12 = (c1 + c2) * 0.5, m20 = (c2 + c0) * 0.5;
+  if (OpenMesh::dot(front, x - c0) <= 0) return 0.0;  // x is behind the sender
+  const bool clips = OpenMesh::dot(c0 - x, n) < 0 || OpenMesh::dot(c1 - x, n) < 0 || OpenMesh::dot(c2 - x, n) < 0;
+  if (clips) {
+    const Vec3d parts[4][3] = {{c0, m01, m20}, {m01, c1, m12}, {m20, m12, c2}, {m01, m12, m20}};
+    double f = 0;
+    for (int s = 0; s < 4; ++s) f += weight[s] * point_to_polygon(x, n, parts[s], 3, front);
+    return f;
+  }
+  // Unclipped, every part's sum has the sign of the whole triangle's (they are all
+  // counter-clockwise and seen from the same side), so the weighted sum of their
+  // absolute values is that sign times the weighted sum of their edge terms. Each
+  // boundary half-edge belongs to one corner part; each inner edge is walked one way by
+  // a corner part and the other way by the middle part.
+  const double b0 = lambert_term(x, n, c0, m01), b1 = lambert_term(x, n, m01, c1);
+  const double b2 = lambert_term(x, n, c1, m12), b3 = lambert_term(x, n, m12, c2);
+  const double b4 = lambert_term(x, n, c2, m20), b5 = lambert_term(x, n, m20, c0);
+  const double whole = b0 + b1 + b2 + b3 + b4 + b5;
+  const double sum = weight[0] * (b0 + b5) + weight[1] * (b1 + b2) + weight[2] * (b3 + b4) +
+                     (weight[0] - weight[3]) * lambert_term(x, n, m01, m20) +
+                     (weight[1] - weight[3]) * lambert_term(x, n, m12, m01) +
+                     (weight[2] - weight[3]) * lambert_term(x, n, m20, m12);
+  return (whole < 0 ? -sum : sum) / (2.0 * M_PI);
+}
+
 }  // namespace dynrad::rad

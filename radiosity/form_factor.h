@@ -16,6 +16,16 @@ namespace dynrad::rad {
 // polygon sends light only from its front.
 double point_to_polygon(const Vec3d& x, const Vec3d& n, const Vec3d* corners, int count, const Vec3d& front);
 
+// The sum over the four parts of a triangle cut at its edge midpoints of weight[s]
+// times the form factor from x to part s: parts 0-2 the corner triangles (corner s and
+// the midpoints of its two edges), part 3 the middle one. The parts share their inner
+// edges, whose Lambert terms cancel between neighbours of equal weight, so where no part
+// needs clipping at x's horizon this takes nine edge terms instead of four polygons'
+// twelve; otherwise it sums the four polygons. `corners` counter-clockwise seen from
+// the front, as for point_to_polygon.
+double point_to_quartered_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
+                                   const Vec3d& front);
+
 // The point-to-area approximation: a polygon of `area` around `centre` (unit front
 // normal `front`) seen from x as if it were a differential area, A cos cos / (pi r^2).
 // Its error relative to the exact form factor is of order (R / r)^2, R the polygon's

@@ -453,13 +453,8 @@ double Solver::element_form_factor(ElementId q) const {
 
 double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   const Patch& sender = patches_[sender_];
-  if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius) {
-    double f = 0;
-    for (int s = 0; s < 4; ++s)
-      f += shape_.weight[s] * point_to_triangle(x, n, shape_.parts[s][0], shape_.parts[s][1], shape_.parts[s][2],
-                                                sender.normal);
-    return f;
-  }
+  if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius)
+    return point_to_quartered_triangle(x, n, sender.corners.data(), shape_.weight.data(), sender.normal);
   double f = point_to_triangle(x, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
   if (shape_.on && f > 0) {
     // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a quarter
@@ -512,9 +507,9 @@ void Solver::shape_sender() {
     b[k] = now - sender.shot_at_nodes[k];
     sender.shot_at_nodes[k] = now - (1 - options_.overshoot) * b[k];
   }
-  // The four parts and their nodes: the corner parts, then the middle one.
+  // The four parts' nodes: the corner parts, then the middle one (the parts of
+  // point_to_quartered_triangle).
   static constexpr int kNodes[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
-  shape_.parts = {{{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}}};
   double part_mean[4], mean = 0;
   for (int s = 0; s < 4; ++s) {
     part_mean[s] = (b[kNodes[s][0]] + b[kNodes[s][1]] + b[kNodes[s][2]]) / 3;

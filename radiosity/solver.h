@@ -143,15 +143,14 @@ class Solver {
   // refined sender is shaped by more than its corners) from their mean, linear on each
   // of the four midpoint sub-triangles. Each part gets a weight w = its mean unshot
   // radiosity / m (the parts have equal areas and the mean of w is 1: the power shot is
-  // the same). F to the shaped sender is the sum of w times F to each part: four closed
-  // forms within kShapeNear sender radii; beyond, F to the whole plus the parts'
+  // the same). F to the shaped sender is the sum of w times F to each part: the parts'
+  // closed forms within kShapeNear sender radii (point_to_quartered_triangle); beyond, F to the whole plus the parts'
   // corrections (w - 1) times their point-to-area forms, to first order in the parts'
   // offsets: the gradient of the point-to-area form at the sender's centroid times the
   // weights' dipole, sum (w - 1) (part centroid - centroid) / 4 (relative error about
   // (sender radius / distance)^2).
   struct SenderShape {
     bool on = false;
-    std::array<std::array<Vec3d, 3>, 4> parts;
     std::array<double, 4> weight{};
     Vec3d centroid, dipole;
     double max_weight = 1;

@@ -176,5 +176,37 @@ TEST(AngleBetween, MatchesAtan2) {
   EXPECT_LT(worst, 1e-14);
 }
 
+
+// The quartered triangle's shared-edge sum against the four parts' own closed forms,
+// for points all around a triangle: in front, beside it (its parts clipped at the
+// point's horizon), tilted, close to it and far, with weights above and below 1.
+TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
+  const Vec3d c[3] = {Vec3d(0, 0, 0), Vec3d(2, 0.3, 0), Vec3d(0.4, 1.7, 0)};
+  const Vec3d front(0, 0, 1);
+  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
+  const Vec3d parts[4][3] = {{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}};
+  const double weights[3][4] = {{1, 1, 1, 1}, {1.6, 0.7, 0.9, 0.8}, {-0.2, 2.5, 0.4, 1.3}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int unclipped = 0, clipped = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3d x(u(rng) * 3, u(rng) * 3, 0.05 + (u(rng) + 1) * (trial % 2 ? 0.3 : 3));
+    const Vec3d n = Vec3d(u(rng), u(rng), u(rng) - 0.2).normalized();
+    bool clips = false;
+    for (const Vec3d& p : c) clips = clips || OpenMesh::dot(p - x, n) < 0;
+    (clips ? clipped : unclipped) += 1;
+    for (const auto& w : weights) {
+      double expected = 0;
+      for (int s = 0; s < 4; ++s) expected += w[s] * point_to_polygon(x, n, parts[s], 3, front);
+      EXPECT_NEAR(point_to_quartered_triangle(x, n, c, w, front), expected, 1e-12 * (1 + std::abs(expected)))
+          << "x " << x << " n " << n;
+    }
+  }
+  EXPECT_GT(unclipped, 300);  // both paths were taken
+  EXPECT_GT(clipped, 300);
+  // Behind the triangle: nothing.
+  EXPECT_EQ(point_to_quartered_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1], front), 0.0);
+}
+
 }  // namespace
 }  // namespace dynrad::rad
