@@ -45,7 +45,35 @@ void check(RTCDevice device, const char* what) {
 
 Visibility::Visibility(const SceneMesh& scene) {
   const TriMesh& mesh = scene.mesh();
-  const Bounds bounds = scene.bounds();
+  build(
+      scene.bounds(), mesh.n_vertices(), mesh.n_faces(), [&](std::size_t v) { return mesh.point(VertexHandle(int(v))); },
+      [&](std::size_t f, unsigned* corners) {
+        int k = 0;
+        for (auto v : mesh.fv_range(FaceHandle(int(f)))) corners[k++] = static_cast<unsigned>(v.idx());
+        return mesh.normal(FaceHandle(int(f)));
+      });
+}
+
+Visibility::Visibility(const std::vector<Vec3d>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  Bounds bounds;
+  for (const Vec3d& p : positions) bounds.extend(p);
+  for (const auto& t : triangles)
+    for (std::uint32_t v : t)
+      if (v >= positions.size()) throw std::invalid_argument("Visibility: a triangle indexes past the points");
+  build(
+      bounds, positions.size(), triangles.size(), [&](std::size_t v) { return positions[v]; },
+      [&](std::size_t f, unsigned* corners) {
+        const auto& t = triangles[f];
+        for (int k = 0; k < 3; ++k) corners[k] = t[k];
+        const Vec3d n = OpenMesh::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+        const double length = n.norm();
+        return length > 0 ? Vec3d(n / length) : Vec3d(0, 0, 0);
+      });
+}
+
+void Visibility::build(const Bounds& bounds, std::size_t vertex_count, std::size_t face_count,
+                       const std::function<Vec3d(std::size_t)>& position,
+                       const std::function<Vec3d(std::size_t, unsigned*)>& face) {
   centre_ = (bounds.lo + bounds.hi) * 0.5;
   // Embree sees the scene centred and scaled to a unit diagonal, whatever the model's
   // units: in micrometres or light years, floats then keep the same relative precision.
@@ -62,21 +90,17 @@ Visibility::Visibility(const SceneMesh& scene) {
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), mesh.n_vertices()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.n_faces()));
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertex_count));
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), face_count));
   check(device_, "allocating geometry");
-  for (auto v : mesh.vertices()) {
-    const Vec3d p = (mesh.point(v) - centre_) * scale_;
-    for (int c = 0; c < 3; ++c) vertices[3 * v.idx() + c] = static_cast<float>(p[c]);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const Vec3d p = (position(v) - centre_) * scale_;
+    for (int c = 0; c < 3; ++c) vertices[3 * v + c] = static_cast<float>(p[c]);
   }
-  face_normals_.resize(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) indices[3 * f.idx() + k++] = static_cast<unsigned>(v.idx());
-    face_normals_[f.idx()] = mesh.normal(f);
-  }
+  face_normals_.resize(face_count);
+  for (std::size_t f = 0; f < face_count; ++f) face_normals_[f] = face(f, indices + 3 * f);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);

@@ -13,8 +13,9 @@
 
 #include <tbb/combinable.h>
 
-#include <functional>
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace dynrad::rad {
@@ -22,6 +23,9 @@ namespace dynrad::rad {
 class Visibility {
  public:
   explicit Visibility(const SceneMesh& scene);
+  // Any triangles (a lit mesh read back from a file, say); face normals from the
+  // corners' order (counter-clockwise seen from the front).
+  Visibility(const std::vector<Vec3d>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles);
   ~Visibility();
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
@@ -73,6 +77,11 @@ class Visibility {
   // the parallel form factors a third of their scaling on two cores.
   mutable tbb::combinable<std::uint64_t> rays_{[] { return std::uint64_t(0); }};
   std::vector<RTCRay>* record_ = nullptr;
+  // The Embree scene from `vertex_count` points and `face_count` triangles: `face(f,
+  // corners)` writes face f's three point indices and returns its unit normal.
+  void build(const Bounds& bounds, std::size_t vertex_count, std::size_t face_count,
+             const std::function<Vec3d(std::size_t)>& position,
+             const std::function<Vec3d(std::size_t, unsigned*)>& face);
   // Fills `ray` for the segment from `from` to `to`, offsets included; false when the
   // two ends are closer than the offsets (nothing can be between them).
   bool make_segment(const Vec3d& from, const Vec3d& from_normal, const Vec3d& to, const Vec3d& to_normal,

@@ -157,6 +157,37 @@ TEST(Visibility, OccludersBlockAndOpenSpaceDoesNot) {
   EXPECT_EQ(vis.trace({1, 1, -0.5}, up, up), Visibility::Hit::back);  // the floor's underside
 }
 
+// The same queries on plain triangles (dynrad probe's lit mesh): two squares, one above
+// the other, in metres far from the origin (floats near 1e6 would round to 0.06 m).
+TEST(Visibility, PlainTrianglesFindTheFirstFace) {
+  const Vec3d o(1e6, 2e6, 0);
+  const std::vector<Vec3d> points = {o + Vec3d(0, 0, 0), o + Vec3d(1, 0, 0), o + Vec3d(1, 1, 0), o + Vec3d(0, 1, 0),
+                                     o + Vec3d(0, 0, 2), o + Vec3d(1, 0, 2), o + Vec3d(1, 1, 2), o + Vec3d(0, 1, 2)};
+  // The floor faces up (counter-clockwise from above); the ceiling faces down.
+  const std::vector<std::array<std::uint32_t, 3>> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}};
+  const Visibility vis(points, triangles);
+  const Vec3d down(0, 0, -1), up(0, 0, 1);
+  auto hit = vis.intersect(o + Vec3d(0.7, 0.2, 1), down);
+  ASSERT_TRUE(hit.hit);
+  EXPECT_EQ(hit.face, 0);
+  EXPECT_TRUE(hit.front);
+  EXPECT_NEAR(hit.distance, 1.0, 1e-6);
+  EXPECT_NEAR(hit.u, 0.5, 1e-6);  // (0.7, 0.2) = 0.5 (1,0) + 0.2 (1,1) + 0.3 (0,0)
+  EXPECT_NEAR(hit.v, 0.2, 1e-6);
+  hit = vis.intersect(o + Vec3d(0.2, 0.7, 1), up);
+  ASSERT_TRUE(hit.hit);
+  EXPECT_EQ(hit.face, 3);
+  EXPECT_TRUE(hit.front);
+  hit = vis.intersect(o + Vec3d(0.5, 0.5, -1), down);  // below the floor, looking away
+  EXPECT_FALSE(hit.hit);
+  hit = vis.intersect(o + Vec3d(0.5, 0.5, 3), down);  // above the ceiling: its back
+  ASSERT_TRUE(hit.hit);
+  EXPECT_FALSE(hit.front);
+  EXPECT_NEAR(hit.distance, 1.0, 1e-6);
+  const std::vector<std::array<std::uint32_t, 3>> broken = {{0, 1, 8}};
+  EXPECT_THROW(Visibility(points, broken), std::invalid_argument);
+}
+
 // The closed form's angle: std::atan2 to 1e-14 over every direction pair, including
 // the reduction boundaries, right angles and near-opposite directions.
 TEST(AngleBetween, MatchesAtan2) {

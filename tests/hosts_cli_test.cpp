@@ -173,6 +173,53 @@ TEST(ProbeCommand, ReadsTheLitMeshItself) {
   }
 }
 
+// Work-plane points in the plane of a wall that stands on the floor's edge: the ray
+// down runs along the wall and along the floor's boundary edge. A lit PLY holds floats,
+// so a wall at x = 24.95 sits at 24.950000763 and a point at 24.95 is a hair off the
+// floor's edge, on either side (in a generated building, 162 of 6,700 grid points missed
+// the floor so). Points within a hair of the edge read the floor: here 0.5 micrometres
+// beyond it, beside one wall and in the corner of two. The floor is lit as g = x (1 at
+// the wall). Then a 40,000-point grid (one ray each, not a search of every triangle).
+TEST(ProbeCommand, PointsInAWallsPlaneReadTheFloorBesideIt) {
+  test::TempDir dir;
+  // Floor x 0..1, y 0..1 (facing up); walls x = 1 (facing -x) and y = 1 (facing -y), 1 m
+  // high, standing on the floor's edges.
+  const char* ply =
+      "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
+      "element face 6\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0 0\n1 0 0 1 1 1\n1 1 0 1 1 1\n0 1 0 0 0 0\n"
+      "1 0 0 5 5 5\n1 1 0 5 5 5\n1 1 1 5 5 5\n1 0 1 5 5 5\n"
+      "0 1 0 7 7 7\n1 1 0 7 7 7\n1 1 1 7 7 7\n0 1 1 7 7 7\n"
+      "3 0 1 2\n3 0 2 3\n3 4 5 6\n3 4 6 7\n3 8 10 9\n3 8 11 10\n";
+  dir.write("lit.ply", ply);
+  dir.write("points.txt",
+            "1 0.5 0.8 0 0 1\n1.0000005 0.25 0.3 0 0 1\n0.5 1 0.8 0 0 1\n1.0000005 1.0000005 0.8 0 0 1\n"
+            "0.5 0.5 0.8 0 0 1\n");
+  auto r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") + "' --json -o '" +
+                            dir.path("probe.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto j = nlohmann::json::parse(test::read_text(dir.path("probe.json")));
+  const double expected[5] = {1.0, 1.0, 0.5, 1.0, 0.5};  // g = x on the floor
+  const double height[5] = {0.8, 0.3, 0.8, 0.8, 0.8};
+  ASSERT_EQ(j["points"].size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    const auto& p = j["points"][i];
+    ASSERT_FALSE(p["radiosity"].is_null()) << p.dump();
+    EXPECT_NEAR(p["radiosity"][1].get<double>(), expected[i], 1e-5) << p.dump();
+    EXPECT_NEAR(p["distance"].get<double>(), height[i], 1e-5) << p.dump();
+  }
+  r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --grid 0,0,0.995,0.995,0.005,0.5 --json -o '" +
+                       dir.path("grid.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  j = nlohmann::json::parse(test::read_text(dir.path("grid.json")));
+  ASSERT_EQ(j["points"].size(), 200u * 200u);
+  for (const auto& p : j["points"]) {
+    ASSERT_FALSE(p["radiosity"].is_null()) << p.dump();
+    ASSERT_NEAR(p["radiosity"][1].get<double>(), p["point"][0].get<double>(), 1e-5) << p.dump();
+  }
+}
+
 TEST(ProbeCommand, BadPointsNameTheLineAndWriteNothing) {
   test::TempDir dir;
   const std::string model = furnace_obj(dir);

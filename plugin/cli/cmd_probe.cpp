@@ -18,12 +18,13 @@
 //
 // Points file: one point per line, `x y z nx ny nz`, `#` starts a comment. --grid
 // x0,y0,x1,y1,step,height adds a horizontal work plane facing up (--up gives the up
-// axis; the grid runs over the other two, in x, y, z order). Brute force over the
-// triangles: for reports of up to thousands of points.
+// axis; the grid runs over the other two, in x, y, z order). The rays go to Embree
+// (rad::Visibility), so a million points on a million triangles take seconds.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
+#include "radiosity/visibility.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -31,6 +32,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -174,77 +176,68 @@ struct Hit {
   Rgb radiosity;
 };
 
-std::optional<Hit> find_surface(const LitMesh& lit, const CalculationPoint& p, std::string& problem) {
+std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index, const CalculationPoint& p,
+                                std::string& problem) {
   const double lift = 1e-6 * lit.diagonal;
   const Vec3d origin = p.position + p.normal * lift, direction = -p.normal;
-  double best = std::numeric_limits<double>::infinity();
-  std::size_t best_face = 0;
-  double best_uv[2] = {0, 0};
-  for (std::size_t f = 0; f < lit.triangles.size(); ++f) {
-    const auto& t = lit.triangles[f];
-    const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
-    // Moller-Trumbore, both sides (the side is checked below), with a little slack on
-    // the barycentric bounds so a ray through a shared edge finds one of its faces.
-    const Vec3d e1 = b - a, e2 = c - a, h = OpenMesh::cross(direction, e2);
-    const double det = OpenMesh::dot(e1, h);
-    if (std::abs(det) < 1e-300) continue;
-    const Vec3d s = origin - a;
-    const double u = OpenMesh::dot(s, h) / det;
-    const Vec3d q = OpenMesh::cross(s, e1);
-    const double w = OpenMesh::dot(direction, q) / det;
-    const double slack = 1e-9;
-    if (u < -slack || w < -slack || u + w > 1 + slack) continue;
-    const double distance = OpenMesh::dot(e2, q) / det;
-    if (distance <= 0 || distance >= best) continue;
-    best = distance;
-    best_face = f;
-    best_uv[0] = std::clamp(u, 0.0, 1.0);
-    best_uv[1] = std::clamp(w, 0.0, 1.0 - best_uv[0]);
+  // Embree finds the first triangle along the ray (either side; the side is checked
+  // below); the weights and the distance are then computed on it in double precision
+  // (Moller-Trumbore), Embree's single-precision ones only where the triangle is edge-on.
+  rad::Visibility::Intersection first = index.intersect(origin, direction);
+  if (!first.hit) {
+    // A ray exactly along a face's boundary edge (a work plane point on the plane of a
+    // wall that stands on the floor's edge) can slip past in single precision: the same
+    // ray moved a hair sideways, four ways (diagonally: off both planes of a corner
+    // between axis-aligned walls), and the nearest face they meet.
+    const Vec3d t1 = OpenMesh::cross(direction, std::abs(direction[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0))
+                         .normalized(),
+                t2 = OpenMesh::cross(direction, t1);
+    for (const Vec3d& side : {t1 + t2, t1 - t2, t2 - t1, (t1 + t2) * -1.0}) {
+      const rad::Visibility::Intersection moved = index.intersect(origin + side * lift, direction);
+      if (moved.hit && (!first.hit || moved.distance < first.distance)) first = moved;
+    }
   }
-  if (!std::isfinite(best)) {
+  if (!first.hit) {
     problem = "no surface along -normal";
     return std::nullopt;
   }
-  const auto& t = lit.triangles[best_face];
+  const auto& t = lit.triangles[static_cast<std::size_t>(first.face)];
   const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
+  double u = first.u, w = first.v, distance = first.distance;
+  const Vec3d e1 = b - a, e2 = c - a, h = OpenMesh::cross(direction, e2);
+  const double det = OpenMesh::dot(e1, h);
+  if (std::abs(det) > 1e-12 * e1.norm() * e2.norm()) {
+    const Vec3d s = origin - a, q = OpenMesh::cross(s, e1);
+    u = OpenMesh::dot(s, h) / det;
+    w = OpenMesh::dot(direction, q) / det;
+    distance = OpenMesh::dot(e2, q) / det;
+  }
+  u = std::clamp(u, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - u);
   Hit hit;
   hit.face_normal = OpenMesh::cross(b - a, c - a).normalized();
   if (OpenMesh::dot(hit.face_normal, p.normal) <= 0) {
     problem = "the first surface along -normal faces away (the point looks at its back)";
     return std::nullopt;
   }
-  const double wa = 1 - best_uv[0] - best_uv[1];
-  hit.point = a * wa + b * best_uv[0] + c * best_uv[1];
-  hit.distance = std::max(0.0, best - lift);
-  hit.radiosity = lit.radiosity[t[0]] * wa + lit.radiosity[t[1]] * best_uv[0] + lit.radiosity[t[2]] * best_uv[1];
+  const double wa = 1 - u - w;
+  hit.point = a * wa + b * u + c * w;
+  hit.distance = std::max(0.0, distance - lift);
+  hit.radiosity = lit.radiosity[t[0]] * wa + lit.radiosity[t[1]] * u + lit.radiosity[t[2]] * w;
   return hit;
 }
 
-// The material of the model face containing `point` and facing along `normal`.
-const Material* material_at(const SceneMesh& model, const Vec3d& point, const Vec3d& normal) {
-  const TriMesh& mesh = model.mesh();
+// The material of the model face at `point` facing along `normal`: the first face a
+// ray from a hair above the point (along the normal) meets within twice that hair, if
+// it faces within 30 degrees of the normal.
+const Material* material_at(const SceneMesh& model, const rad::Visibility& index, const Vec3d& point,
+                            const Vec3d& normal) {
   const double tolerance = 1e-5 * model.bounds().diagonal();
-  const Material* best = nullptr;
-  double best_distance = tolerance;
-  for (auto f : mesh.faces()) {
-    const Vec3d fn = model.normal(f);
-    if (OpenMesh::dot(fn, normal) < std::cos(30.0 * M_PI / 180.0)) continue;
-    Vec3d c[3];
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) c[k++] = mesh.point(v);
-    const double plane = std::abs(OpenMesh::dot(point - c[0], fn));
-    if (plane > best_distance) continue;
-    const double area = OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), fn);
-    bool inside = true;
-    for (int i = 0; i < 3 && inside; ++i) {
-      const double w = OpenMesh::dot(OpenMesh::cross(c[(i + 1) % 3] - point, c[(i + 2) % 3] - point), fn) / area;
-      inside = w >= -tolerance / std::sqrt(std::abs(area));
-    }
-    if (!inside) continue;
-    best = &model.material(f);
-    best_distance = plane;
-  }
-  return best;
+  const rad::Visibility::Intersection hit = index.intersect(point + normal * tolerance, -normal);
+  if (!hit.hit || hit.distance > 2 * tolerance) return nullptr;
+  const FaceHandle f(hit.face);
+  if (OpenMesh::dot(model.normal(f), normal) < std::cos(30.0 * M_PI / 180.0)) return nullptr;
+  return &model.material(f);
 }
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
@@ -273,11 +266,14 @@ int run_probe(const ProbeOptions& options) {
     points.insert(points.end(), grid.begin(), grid.end());
   }
   const LitMesh lit = read_lit(options.lit);
+  const rad::Visibility lit_index(lit.positions, lit.triangles);
   std::unique_ptr<SceneMesh> model;
+  std::unique_ptr<rad::Visibility> model_index;
   if (!options.model.empty()) {
     CleanupOptions cleanup;
     cleanup.merge_tolerance = options.merge_tolerance;
     model = std::move(load_scene(options.model, cleanup).mesh);
+    model_index = std::make_unique<rad::Visibility>(*model);
   }
 
   nlohmann::json rows = nlohmann::json::array();
@@ -293,7 +289,7 @@ int run_probe(const ProbeOptions& options) {
                           {"normal", {p.normal[0], p.normal[1], p.normal[2]}},
                           {"source", p.source}};
     std::string problem;
-    const auto hit = find_surface(lit, p, problem);
+    const auto hit = find_surface(lit, lit_index, p, problem);
     const std::string where = fmt::format("({:.4g}, {:.4g}, {:.4g})", p.position[0], p.position[1], p.position[2]);
     table << fmt::format("{:>4} {:>30}", i + 1, where);
     if (!hit) {
@@ -316,7 +312,7 @@ int run_probe(const ProbeOptions& options) {
       const Material* material = nullptr;
       if (constant_reflectance) {
         rho = *constant_reflectance;
-      } else if ((material = material_at(*model, hit->point, hit->face_normal))) {
+      } else if ((material = material_at(*model, *model_index, hit->point, hit->face_normal))) {
         rho = material->reflectance;
         emission = material->emission;
         row["material"] = material->name;
