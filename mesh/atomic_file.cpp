@@ -36,8 +36,22 @@ void check_target(const std::string& target) {
 }  // namespace
 
 AtomicFile::AtomicFile(std::string target, std::ios::openmode mode) : target_(std::move(target)) {
+  namespace fs = std::filesystem;
   check_target(target_);
-  temp_ = temp_name_for(target_);
+  std::error_code ec;
+  // A symbolic link stays a link: the file it points to is replaced, beside itself.
+  if (fs::is_symlink(target_, ec)) {
+    const fs::path resolved = fs::weakly_canonical(target_, ec);
+    if (!ec) {
+      target_ = resolved.string();
+      check_target(target_);
+    }
+  }
+  // Not a regular file (/dev/null, /dev/stdout, a named pipe): written as it is. A
+  // rename would replace the device or pipe with a file (as root, even /dev/null).
+  const fs::file_status status = fs::status(target_, ec);
+  direct_ = !ec && fs::exists(status) && !fs::is_regular_file(status);
+  temp_ = direct_ ? target_ : temp_name_for(target_);
   stream_.open(temp_, mode | std::ios::out | std::ios::trunc);
   if (!stream_)
     throw OutputError(target_, std::string("cannot be written: ") + std::strerror(errno) +
@@ -47,7 +61,7 @@ AtomicFile::AtomicFile(std::string target, std::ios::openmode mode) : target_(st
 AtomicFile::~AtomicFile() {
   if (committed_) return;
   stream_.close();
-  std::remove(temp_.c_str());
+  if (!direct_) std::remove(temp_.c_str());
 }
 
 void AtomicFile::commit() {
@@ -55,8 +69,13 @@ void AtomicFile::commit() {
   const bool written = static_cast<bool>(stream_);
   stream_.close();
   if (!written || stream_.fail()) {
+    if (direct_) throw OutputError(target_, "writing failed.");
     std::remove(temp_.c_str());
     throw OutputError(target_, "writing failed (disk full?). The previous file, if any, is unchanged.");
+  }
+  if (direct_) {
+    committed_ = true;
+    return;
   }
   if (std::rename(temp_.c_str(), target_.c_str()) != 0) {
     const std::string why = std::strerror(errno);
@@ -66,6 +85,14 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void check_output_writable(const std::string& target) { AtomicFile probe(target); }
+void check_output_writable(const std::string& target) {
+  // A pipe is not opened ahead: that would hand its reader an empty stream.
+  std::error_code ec;
+  const auto status = std::filesystem::status(target, ec);
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status))
+    return;
+  AtomicFile probe(target);
+}
 
 }  // namespace dynrad

@@ -1,6 +1,8 @@
 // Outputs are written to a temporary file beside the target and renamed over it only
 // once complete, so a target is never half-written and an existing file survives any
-// failed run untouched.
+// failed run untouched. A target that is a symbolic link keeps the link (the file it
+// points to is replaced); one that exists and is not a regular file (/dev/null, a named
+// pipe) is written directly.
 #pragma once
 
 #include <fstream>
@@ -28,6 +30,7 @@ class AtomicFile {
   std::string target_, temp_;
   std::ofstream stream_;
   bool committed_ = false;
+  bool direct_ = false;  // written in place: not a regular file
 };
 
 // Fails early, before any long computation, if `target` could not be written.

@@ -8,6 +8,10 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <set>
 
@@ -150,6 +154,43 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporary) {
   }
   EXPECT_EQ(test::read_text(target), "new contents");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path("")), {}), 1);
+}
+
+// A link stays a link (the file it points to gets the new contents); a named pipe (as
+// /dev/null, /dev/stdout) is written in place, not replaced by a file, and is not
+// opened ahead by the early writability check.
+TEST(AtomicFile, LinksAreKeptAndPipesWrittenInPlace) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  const std::string real = dir.write("real.ply", "old contents");
+  fs::create_symlink(real, dir.path("link.ply"));
+  check_output_writable(dir.path("link.ply"));
+  {
+    AtomicFile file(dir.path("link.ply"));
+    file.stream() << "new contents";
+    file.commit();
+  }
+  EXPECT_TRUE(fs::is_symlink(dir.path("link.ply")));
+  EXPECT_EQ(test::read_text(real), "new contents");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path("")), {}), 2);  // no temporary left
+
+  const std::string pipe = dir.path("pipe");
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  check_output_writable(pipe);  // must not block: nothing reads yet
+  const int reader = ::open(pipe.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  {
+    AtomicFile file(pipe, std::ios::out);
+    file.stream() << "through the pipe";
+    file.commit();
+  }
+  std::string received;
+  char buffer[256];
+  for (ssize_t n; (n = ::read(reader, buffer, sizeof buffer)) > 0;) received.append(buffer, static_cast<std::size_t>(n));
+  ::close(reader);
+  EXPECT_EQ(received, "through the pipe");  // a rename would have left the reader with nothing
+  EXPECT_TRUE(fs::is_fifo(pipe));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path("")), {}), 3);
 }
 
 TEST(AtomicFile, MissingDirectoryIsAClearError) {
