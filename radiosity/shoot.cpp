@@ -105,8 +105,9 @@ bool Solver::shoot_once() {
     const std::size_t chunk = std::max<std::size_t>(4, (level.size() + kChunks - 1) / kChunks);
     const std::size_t chunks = (level.size() + chunk - 1) / chunk;
     if (walk_chunks_.size() < chunks) walk_chunks_.resize(chunks);
-    const bool short_level = level.size() < 16;  // not worth waking the other threads for
-    parallel_for_index(chunks, short_level ? chunks + 1 : 0, [&](std::size_t c) {
+    // (a level of fewer than 16 elements is not worth waking the other threads for)
+    const std::size_t serial_below = level.size() < 16 ? chunks + 1 : 0;
+    parallel_for_index(chunks, serial_below, [&](std::size_t c) {
       WalkChunk& out = walk_chunks_[c];
       out.clear();
       for (std::size_t n = c * chunk; n < std::min(level.size(), (c + 1) * chunk); ++n) {

@@ -144,9 +144,9 @@ class Solver {
   // of the four midpoint sub-triangles. Each part gets a weight w = its mean unshot
   // radiosity / m (the parts have equal areas and the mean of w is 1: the power shot is
   // the same). F to the shaped sender is the sum of w times F to each part: the parts'
-  // closed forms within kShapeNear sender radii (point_to_quartered_triangle); beyond, F to the whole plus the parts'
-  // corrections (w - 1) times their point-to-area forms, to first order in the parts'
-  // offsets: the gradient of the point-to-area form at the sender's centroid times the
+  // closed forms within kShapeNear sender radii (point_to_quartered_triangle); beyond,
+  // F to the whole plus the parts' corrections (w - 1) times their point-to-area forms,
+  // to first order in the parts' offsets: the gradient of the point-to-area form at the sender's centroid times the
   // weights' dipole, sum (w - 1) (part centroid - centroid) / 4 (relative error about
   // (sender radius / distance)^2).
   struct SenderShape {
@@ -176,7 +176,8 @@ class Solver {
   static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
-  void initialise_values(ElementId first, std::size_t count);  // its values, from the parents
+  // Values of elements first to count - 1, each from its nearest ancestor before first.
+  void initialise_values(ElementId first, std::size_t count);
   // Push-down: dB given at q's corners reaches every element below q, interpolated
   // linearly. It is lazy (exact, since interpolation is linear): q keeps the sum as
   // pending, and flush(q) hands it to q's children when the walk enters them.
