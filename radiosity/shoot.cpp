@@ -75,7 +75,7 @@ bool Solver::shoot_once() {
   const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<ElementId> ready;  // existing elements of the next level
-  std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // visited, the shot goes on below
+  std::vector<ElementId> passed;  // visited, the shot goes on below
   // Adaptive: children of a leaf the oracle split in this shot; the walk splits them
   // again to complete the 1 -> 4 split. (Dynamic needs no marks: it reaches odd
   // generations only by going on from an even one, so it always completes the split.)
@@ -151,7 +151,7 @@ bool Solver::shoot_once() {
         }
         if (go_on) {
           flush(q);  // the children must hold what earlier shots pushed down before they are shot
-          out.passed.emplace_back(q, in.current);
+          out.passed.push_back(q);
           if (el.is_leaf())
             out.subdivide.push_back(q);
           else
@@ -202,10 +202,12 @@ bool Solver::shoot_once() {
     }
     overlap.wait();
     initialise_new_elements();  // all of this level's new elements at once (values do not change in between)
-    for (const auto& [q, current] : passed) {
+    for (ElementId q : passed) {
       const Element& el = hierarchy_.element(q);
-      if (gathered_in_[q] != report_.iterations + 1)
-        for (int k = 0; k < 3; ++k) value_[q][k] += current[k];
+      if (gathered_in_[q] != report_.iterations + 1) {  // dB, as in the decision pass
+        const Patch& patch = patches_[el.patch];
+        for (int k = 0; k < 3; ++k) value_[q][k] += patch.reflectance * shot * form_factor(q, k);
+      }
       if (el.is_leaf()) {  // the split was refused (minimum area): the shot stops here
         terminals.push_back(q);
         reach.push_back(element_reach(q));

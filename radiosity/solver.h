@@ -79,6 +79,9 @@ class Solver {
   const SolveReport& report() const { return report_; }
   // For benchmarks: see Visibility::record_rays (single thread only).
   void record_rays(std::vector<RTCRay>* sink) { visibility_->record_rays(sink); }
+  // For benchmarks: see Visibility::time_calls.
+  void time_visibility(bool on) { visibility_->time_calls(on); }
+  double seconds_in_embree() const { return visibility_->seconds_in_embree(); }
 
  private:
   struct Patch {
@@ -197,7 +200,7 @@ class Solver {
   // and counters, in level order (see shoot_once()). Kept between shots for their
   // storage.
   struct WalkChunk {
-    std::vector<std::pair<ElementId, std::array<Rgb, 3>>> passed;  // the shot goes on below
+    std::vector<ElementId> passed;  // the shot goes on below
     std::vector<ElementId> subdivide, ready, terminals;
     std::vector<double> reach;  // per terminal
     std::size_t transfers = 0, patch_transfers = 0;

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -108,6 +109,18 @@ void Visibility::build(const Bounds& bounds, std::size_t vertex_count, std::size
   check(device_, "building the scene");
 }
 
+template <class Call>
+void Visibility::embree(const Call& call) const {
+  if (!time_calls_) {
+    call();
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  call();
+  embree_ns_.local() += static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+}
+
 Visibility::~Visibility() {
   if (scene_) rtcReleaseScene(scene_);
   if (device_) rtcReleaseDevice(device_);
@@ -159,7 +172,7 @@ int Visibility::visible_count(const Vec3d& from, const Vec3d& from_normal, const
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcOccluded1M(scene_, &context, rays, static_cast<unsigned>(n), sizeof(RTCRay));
+    embree([&] { rtcOccluded1M(scene_, &context, rays, static_cast<unsigned>(n), sizeof(RTCRay)); });
     for (int i = 0; i < n; ++i) visible += rays[i].tfar >= 0;
     rays_.local() += static_cast<std::uint64_t>(n);
   }
@@ -194,7 +207,7 @@ Visibility::Hit Visibility::trace(const Vec3d& origin_world, const Vec3d& normal
                               static_cast<float>(epsilon_ * scale_));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcIntersect1(scene_, &context, &rh);
+  embree([&] { rtcIntersect1(scene_, &context, &rh); });
   ++rays_.local();
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit::nothing;
   return OpenMesh::dot(face_normals_[rh.hit.primID], direction) < 0 ? Hit::front : Hit::back;

@@ -45,6 +45,10 @@ class Visibility {
   // For benchmarks: while set, every occlusion ray is also appended to `sink` (one
   // thread only: the sink is not locked). Null stops recording.
   void record_rays(std::vector<RTCRay>* sink) { record_ = sink; }
+  // For benchmarks: while on, the time spent inside Embree's calls is summed over all
+  // threads (two clock reads per call: a few percent slower).
+  void time_calls(bool on) { time_calls_ = on; }
+  double seconds_in_embree() const { return 1e-9 * static_cast<double>(embree_ns_.combine(std::plus<>())); }
   // Casts recorded rays as they are (one at a time, or as streams of `stream` rays);
   // returns how many were blocked. For the throughput benchmark's reference.
   std::size_t replay(const RTCRay* rays, std::size_t count, int stream = 1) const;
@@ -77,6 +81,11 @@ class Visibility {
   // the parallel form factors a third of their scaling on two cores.
   mutable tbb::combinable<std::uint64_t> rays_{[] { return std::uint64_t(0); }};
   std::vector<RTCRay>* record_ = nullptr;
+  bool time_calls_ = false;
+  mutable tbb::combinable<std::uint64_t> embree_ns_{[] { return std::uint64_t(0); }};
+  // Runs `call` (an Embree query), timing it when time_calls_ is on.
+  template <class Call>
+  void embree(const Call& call) const;
   // The Embree scene from `vertex_count` points and `face_count` triangles: `face(f,
   // corners)` writes face f's three point indices and returns its unit normal.
   void build(const Bounds& bounds, std::size_t vertex_count, std::size_t face_count,
