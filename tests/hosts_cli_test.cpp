@@ -220,6 +220,75 @@ TEST(ProbeCommand, PointsInAWallsPlaneReadTheFloorBesideIt) {
   }
 }
 
+// Points on edges and corners shared by faces of different values (a lamp's edge in a
+// ceiling; the PLY splits the vertices there): a checkerboard of squares, each with its
+// own value and its own vertices, faces in a scrambled order. Every point reads the
+// lowest-numbered face that holds it, as a search of every triangle would, not the
+// face Embree's tree happens to report (that was another face at 60 of these 105).
+TEST(ProbeCommand, PointsOnSharedEdgesReadTheLowestNumberedFace) {
+  test::TempDir dir;
+  constexpr int kSide = 8;
+  constexpr double kH = 0.25;
+  std::vector<std::array<double, 2>> points;
+  std::vector<double> value;
+  std::vector<std::array<int, 3>> faces;
+  for (int i = 0; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j) {
+      const int b = static_cast<int>(points.size());
+      const double x = i * kH, y = j * kH, g = 1 + (i * 7 + j * 3) % 5;
+      for (const auto& p : {std::array<double, 2>{x, y}, {x + kH, y}, {x + kH, y + kH}, {x, y + kH}}) {
+        points.push_back(p);
+        value.push_back(g);
+      }
+      if ((i + j) % 2 == 0) {
+        faces.push_back({b, b + 1, b + 2});
+        faces.push_back({b, b + 2, b + 3});
+      } else {
+        faces.push_back({b, b + 1, b + 3});
+        faces.push_back({b + 1, b + 2, b + 3});
+      }
+    }
+  std::vector<std::array<int, 3>> order(faces.size());  // face k is faces[(37 k) mod n]
+  for (std::size_t k = 0; k < faces.size(); ++k) order[k] = faces[(37 * k) % faces.size()];
+  std::ostringstream ply;
+  ply << "ply\nformat ascii 1.0\nelement vertex " << points.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radiosity_r\n"
+         "property float radiosity_g\nproperty float radiosity_b\nelement face "
+      << order.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (std::size_t v = 0; v < points.size(); ++v)
+    ply << points[v][0] << " " << points[v][1] << " 0 " << value[v] << " " << value[v] << " " << value[v] << "\n";
+  for (const auto& t : order) ply << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  dir.write("lit.ply", ply.str());
+  std::vector<std::array<double, 2>> probes;
+  for (int i = 1; i < kSide; ++i)
+    for (int j = 1; j < kSide; ++j) probes.push_back({i * kH, j * kH});  // corners
+  for (int i = 1; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j) probes.push_back({i * kH, (j + 0.5) * kH});  // edges
+  std::ostringstream text;
+  for (const auto& p : probes) text << p[0] << " " << p[1] << " 0 0 0 1\n";
+  dir.write("points.txt", text.str());
+  const auto r = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --points '" + dir.path("points.txt") +
+                                  "' --json -o '" + dir.path("probe.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(test::read_text(dir.path("probe.json")));
+  ASSERT_EQ(j["points"].size(), probes.size());
+  for (std::size_t n = 0; n < probes.size(); ++n) {
+    double expected = -1;
+    for (const auto& t : order) {  // the first face that holds the point
+      const auto &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+      const double d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+      const double u = ((probes[n][0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (probes[n][1] - a[1])) / d;
+      const double w = ((b[0] - a[0]) * (probes[n][1] - a[1]) - (probes[n][0] - a[0]) * (b[1] - a[1])) / d;
+      if (u >= -1e-9 && w >= -1e-9 && u + w <= 1 + 1e-9) {
+        expected = value[t[0]];
+        break;
+      }
+    }
+    ASSERT_FALSE(j["points"][n]["radiosity"].is_null()) << j["points"][n].dump();
+    EXPECT_NEAR(j["points"][n]["radiosity"][1].get<double>(), expected, 1e-6) << j["points"][n].dump();
+  }
+}
+
 TEST(ProbeCommand, BadPointsNameTheLineAndWriteNothing) {
   test::TempDir dir;
   const std::string model = furnace_obj(dir);

@@ -37,6 +37,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -56,11 +57,15 @@ struct CalculationPoint {
   std::string source;  // "points.txt:7" or "grid"
 };
 
-// The lit mesh as plain triangles with per-vertex radiosity.
+// The lit mesh as plain triangles with per-vertex radiosity, and the triangles around
+// each place: vertices split where surfaces meet (a lamp in a ceiling) share their
+// place, place[v]; its triangles are around[around_start[place] .. around_start[place
+// + 1]), in number order.
 struct LitMesh {
   std::vector<Vec3d> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<Rgb> radiosity;
+  std::vector<std::uint32_t> place, around_start, around;
   double diagonal = 0;
 };
 
@@ -94,6 +99,18 @@ LitMesh read_lit(const std::string& path) {
     lit.triangles.push_back(t);
   }
   if (lit.triangles.empty()) throw InputError(path, 0, "has no faces, so there is nothing to probe.");
+  std::map<std::array<double, 3>, std::uint32_t> places;
+  lit.place.reserve(lit.positions.size());
+  for (const Vec3d& p : lit.positions)
+    lit.place.push_back(places.emplace(std::array<double, 3>{p[0], p[1], p[2]}, places.size()).first->second);
+  lit.around_start.assign(places.size() + 1, 0);
+  for (const auto& t : lit.triangles)
+    for (std::uint32_t v : t) ++lit.around_start[lit.place[v] + 1];
+  for (std::size_t k = 0; k < places.size(); ++k) lit.around_start[k + 1] += lit.around_start[k];
+  lit.around.resize(lit.around_start.back());
+  std::vector<std::uint32_t> fill(lit.around_start.begin(), lit.around_start.end() - 1);
+  for (std::uint32_t f = 0; f < lit.triangles.size(); ++f)
+    for (std::uint32_t v : lit.triangles[f]) lit.around[fill[lit.place[v]]++] = f;
   lit.diagonal = bounds.diagonal();
   return lit;
 }
@@ -181,8 +198,7 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
   const double lift = 1e-6 * lit.diagonal;
   const Vec3d origin = p.position + p.normal * lift, direction = -p.normal;
   // Embree finds the first triangle along the ray (either side; the side is checked
-  // below); the weights and the distance are then computed on it in double precision
-  // (Moller-Trumbore), Embree's single-precision ones only where the triangle is edge-on.
+  // below); the weights and the distance are then computed in double precision.
   rad::Visibility::Intersection first = index.intersect(origin, direction);
   if (!first.hit) {
     // A ray exactly along a face's boundary edge (a work plane point on the plane of a
@@ -201,17 +217,42 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
     problem = "no surface along -normal";
     return std::nullopt;
   }
-  const auto& t = lit.triangles[static_cast<std::size_t>(first.face)];
-  const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
+  // Where the point lies on an edge or a corner that several faces share (a lamp's
+  // edge in a ceiling), which of them Embree reports depends on its tree. The faces
+  // around the hit face's corners (at the same places, split vertices included) are
+  // tested again in double precision (Moller-Trumbore,
+  // both sides, a little slack on the barycentric bounds) in number order, and the
+  // nearest wins, the lower-numbered one on a tie: the same face a search of every
+  // triangle finds.
+  std::vector<std::uint32_t> candidates;
+  for (std::uint32_t v : lit.triangles[static_cast<std::size_t>(first.face)])
+    candidates.insert(candidates.end(), lit.around.begin() + lit.around_start[lit.place[v]],
+                      lit.around.begin() + lit.around_start[lit.place[v] + 1]);
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::size_t face = static_cast<std::size_t>(first.face);
   double u = first.u, w = first.v, distance = first.distance;
-  const Vec3d e1 = b - a, e2 = c - a, h = OpenMesh::cross(direction, e2);
-  const double det = OpenMesh::dot(e1, h);
-  if (std::abs(det) > 1e-12 * e1.norm() * e2.norm()) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t f : candidates) {
+    const auto& t = lit.triangles[f];
+    const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
+    const Vec3d e1 = b - a, e2 = c - a, h = OpenMesh::cross(direction, e2);
+    const double det = OpenMesh::dot(e1, h);
+    if (std::abs(det) < 1e-300) continue;
     const Vec3d s = origin - a, q = OpenMesh::cross(s, e1);
-    u = OpenMesh::dot(s, h) / det;
-    w = OpenMesh::dot(direction, q) / det;
-    distance = OpenMesh::dot(e2, q) / det;
+    const double fu = OpenMesh::dot(s, h) / det, fw = OpenMesh::dot(direction, q) / det;
+    const double slack = 1e-9;
+    if (fu < -slack || fw < -slack || fu + fw > 1 + slack) continue;
+    const double fd = OpenMesh::dot(e2, q) / det;
+    if (fd <= 0 || fd >= best) continue;
+    best = distance = fd;
+    face = f;
+    u = fu;
+    w = fw;
   }
+  // (none passes only where a moved ray found the face: its weights, clamped)
+  const auto& t = lit.triangles[face];
+  const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
   u = std::clamp(u, 0.0, 1.0);
   w = std::clamp(w, 0.0, 1.0 - u);
   Hit hit;
@@ -227,17 +268,45 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
   return hit;
 }
 
-// The material of the model face at `point` facing along `normal`: the first face a
-// ray from a hair above the point (along the normal) meets within twice that hair, if
-// it faces within 30 degrees of the normal.
+// The material of the model face at `point` facing along `normal`. A short ray from a
+// hair above the point (along the normal) finds a face within twice that hair; then,
+// as a search of every face would, the faces around its corners that face within 30
+// degrees of the normal, pass within the hair of the point and hold it, in number
+// order, the nearest plane winning (the later face on a tie). So a point on a lamp's
+// edge gets the same face every time, whichever of the two Embree's tree reports.
 const Material* material_at(const SceneMesh& model, const rad::Visibility& index, const Vec3d& point,
                             const Vec3d& normal) {
+  const TriMesh& mesh = model.mesh();
   const double tolerance = 1e-5 * model.bounds().diagonal();
   const rad::Visibility::Intersection hit = index.intersect(point + normal * tolerance, -normal);
   if (!hit.hit || hit.distance > 2 * tolerance) return nullptr;
-  const FaceHandle f(hit.face);
-  if (OpenMesh::dot(model.normal(f), normal) < std::cos(30.0 * M_PI / 180.0)) return nullptr;
-  return &model.material(f);
+  std::vector<int> candidates;
+  for (auto v : mesh.fv_range(FaceHandle(hit.face)))
+    for (auto f : mesh.vf_range(v)) candidates.push_back(f.idx());
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  const Material* best = nullptr;
+  double best_distance = tolerance;
+  for (int index_f : candidates) {
+    const FaceHandle f(index_f);
+    const Vec3d fn = model.normal(f);
+    if (OpenMesh::dot(fn, normal) < std::cos(30.0 * M_PI / 180.0)) continue;
+    Vec3d c[3];
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) c[k++] = mesh.point(v);
+    const double plane = std::abs(OpenMesh::dot(point - c[0], fn));
+    if (plane > best_distance) continue;
+    const double area = OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), fn);
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i) {
+      const double w = OpenMesh::dot(OpenMesh::cross(c[(i + 1) % 3] - point, c[(i + 2) % 3] - point), fn) / area;
+      inside = w >= -tolerance / std::sqrt(std::abs(area));
+    }
+    if (!inside) continue;
+    best = &model.material(f);
+    best_distance = plane;
+  }
+  return best;
 }
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
