@@ -33,6 +33,15 @@ void check_target(const std::string& target) {
     throw OutputError(target, "cannot be written: directory '" + dir.string() + "' does not exist. Create it first.");
 }
 
+// An existing target that is not a regular file nor a directory: /dev/null, a named
+// pipe. It is written in place; a rename would replace the device or pipe with a file.
+bool is_special_file(const std::string& target) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(target, ec);
+  return !ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+         !std::filesystem::is_directory(status);
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::string target, std::ios::openmode mode) : target_(std::move(target)) {
@@ -47,10 +56,7 @@ AtomicFile::AtomicFile(std::string target, std::ios::openmode mode) : target_(st
       check_target(target_);
     }
   }
-  // Not a regular file (/dev/null, /dev/stdout, a named pipe): written as it is. A
-  // rename would replace the device or pipe with a file (as root, even /dev/null).
-  const fs::file_status status = fs::status(target_, ec);
-  direct_ = !ec && fs::exists(status) && !fs::is_regular_file(status);
+  direct_ = is_special_file(target_);  // (renamed over, as root even /dev/null would go)
   temp_ = direct_ ? target_ : temp_name_for(target_);
   stream_.open(temp_, mode | std::ios::out | std::ios::trunc);
   if (!stream_)
@@ -86,12 +92,7 @@ void AtomicFile::commit() {
 }
 
 void check_output_writable(const std::string& target) {
-  // A pipe is not opened ahead: that would hand its reader an empty stream.
-  std::error_code ec;
-  const auto status = std::filesystem::status(target, ec);
-  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
-      !std::filesystem::is_directory(status))
-    return;
+  if (is_special_file(target)) return;  // not opened ahead: a pipe's reader would get an empty stream
   AtomicFile probe(target);
 }
 

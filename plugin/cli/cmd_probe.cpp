@@ -19,7 +19,8 @@
 // Points file: one point per line, `x y z nx ny nz`, `#` starts a comment. --grid
 // x0,y0,x1,y1,step,height adds a horizontal work plane facing up (--up gives the up
 // axis; the grid runs over the other two, in x, y, z order). The rays go to Embree
-// (rad::Visibility), so a million points on a million triangles take seconds.
+// (rad::Visibility): 6,700 points on a lit building of 450,000 triangles take half a
+// second.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/load.h"
@@ -220,10 +221,9 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
   // Where the point lies on an edge or a corner that several faces share (a lamp's
   // edge in a ceiling), which of them Embree reports depends on its tree. The faces
   // around the hit face's corners (at the same places, split vertices included) are
-  // tested again in double precision (Moller-Trumbore,
-  // both sides, a little slack on the barycentric bounds) in number order, and the
-  // nearest wins, the lower-numbered one on a tie: the same face a search of every
-  // triangle finds.
+  // tested again in double precision (Moller-Trumbore, both sides, a little slack on
+  // the barycentric bounds) in number order, and the nearest wins, the lower-numbered
+  // one on a tie: the same face a search of every triangle finds.
   std::vector<std::uint32_t> candidates;
   for (std::uint32_t v : lit.triangles[static_cast<std::size_t>(first.face)])
     candidates.insert(candidates.end(), lit.around.begin() + lit.around_start[lit.place[v]],
