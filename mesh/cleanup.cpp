@@ -2,15 +2,22 @@
 //   1. merge points within a tolerance relative to the scene size (CGAL k-d tree);
 //   2. drop repeated corners and polygons left with fewer than 3 points;
 //   3. snap T-junctions: a point lying on another polygon's edge is inserted into it;
-//   4. triangulate polygons (concave too) with a constrained Delaunay triangulation in
+//   4. flatten near-planar polygons onto their best-fit planes (flatten.h);
+//   5. triangulate polygons (concave too) with a constrained Delaunay triangulation in
 //      the polygon's plane, falling back to CGAL's hole filling for warped loops;
-//   5. drop zero-area and duplicate triangles (same corners and same facing);
-//   6. cut edges that are not manifold (more than two faces, or two faces facing
+//   6. drop zero-area and duplicate triangles (same corners and same facing);
+//   7. imprint where surfaces cross or touch (imprint.h): the facets that meet are
+//      triangulated again with those lines as edges, steps 1-3, 5 and 6 run again on the
+//      result so that it is conforming, and the pieces no light can reach are removed
+//      (hidden.h);
+//   8. cut edges that are not manifold (more than two faces, or two faces facing
 //      opposite ways) by giving each fan of faces around a point its own copy.
 #include "mesh/cleanup.h"
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include "mesh/hidden.h"
+#include "mesh/imprint.h"
+#include "mesh/polygon_triangulation.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Fuzzy_iso_box.h>
 #include <CGAL/Fuzzy_sphere.h>
@@ -18,12 +25,10 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <numeric>
-#include <queue>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -63,102 +68,8 @@ struct UnionFind {
   }
 };
 
-Vec3d newell_normal(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& poly) {
-  Vec3d n(0.0);
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Vec3d& a = pts[poly[i]];
-    const Vec3d& b = pts[poly[(i + 1) % poly.size()]];
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  return n;  // length = twice the (projected) area
-}
-
 // ---------------------------------------------------------------------------
-// Step 4: triangulation of one polygon.
-struct FaceInfo {
-  int nesting = -1;
-  bool inside() const { return nesting % 2 == 1; }
-};
-// CGAL default-initialises vertex info, which leaves a bare integer with whatever the
-// memory held; a struct with an initialiser starts at 0 ("unset") every time.
-struct CornerInfo {
-  std::uint32_t index_plus_one = 0;
-};
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<CornerInfo, K>;
-using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
-
-// Marks faces by how many constraints separate them from the infinite face; faces at
-// odd depth are inside the polygon.
-void mark_nesting(Cdt& cdt) {
-  for (auto f : cdt.all_face_handles()) f->info().nesting = -1;
-  std::queue<std::pair<Cdt::Face_handle, int>> border;
-  border.emplace(cdt.infinite_face(), 0);
-  while (!border.empty()) {
-    auto [start, level] = border.front();
-    border.pop();
-    if (start->info().nesting != -1) continue;
-    std::queue<Cdt::Face_handle> region;
-    region.push(start);
-    start->info().nesting = level;
-    while (!region.empty()) {
-      auto f = region.front();
-      region.pop();
-      for (int i = 0; i < 3; ++i) {
-        auto n = f->neighbor(i);
-        if (n->info().nesting != -1) continue;
-        if (cdt.is_constrained(Cdt::Edge(f, i))) {
-          border.emplace(n, level + 1);
-        } else {
-          n->info().nesting = level;
-          region.push(n);
-        }
-      }
-    }
-  }
-}
-
-using Triangle = std::array<std::uint32_t, 3>;
-
-bool triangulate_planar(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& poly, const Vec3d& normal,
-                        std::vector<Triangle>& out) {
-  // Orthonormal basis (u, v, n): counter-clockwise in (u, v) means facing along n.
-  const Vec3d n = normal.normalized();
-  const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-  const Vec3d u = OpenMesh::cross(helper, n).normalized();
-  const Vec3d v = OpenMesh::cross(n, u);
-  Cdt cdt;
-  std::vector<Cdt::Vertex_handle> handles;
-  handles.reserve(poly.size());
-  try {
-    for (auto index : poly) {
-      const Vec3d& p = pts[index];
-      auto vh = cdt.insert(K::Point_2(OpenMesh::dot(p, u), OpenMesh::dot(p, v)));
-      auto& corner = vh->info().index_plus_one;
-      if (corner != 0 && corner != index + 1) return false;  // two corners project onto one point
-      corner = index + 1;
-      handles.push_back(vh);
-    }
-    for (std::size_t i = 0; i < handles.size(); ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
-  } catch (const Cdt::Intersection_of_constraints_exception&) {
-    return false;  // self-intersecting loop
-  }
-  mark_nesting(cdt);
-  std::size_t produced = 0;
-  for (auto f : cdt.finite_face_handles()) {
-    if (!f->info().inside()) continue;
-    Triangle t{f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
-               f->vertex(2)->info().index_plus_one - 1};
-    out.push_back(t);
-    ++produced;
-  }
-  return produced + 2 == poly.size();  // a simple n-gon without Steiner points has n-2 triangles
-}
-
+// Step 5, for loops that are not planar.
 bool triangulate_warped(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& poly,
                         std::vector<Triangle>& out) {
   std::vector<Point3> loop;
@@ -186,19 +97,28 @@ class Cleaner {
 
     points_ = in_.points;
     polygons_ = in_.polygons;
+    origin_.resize(polygons_.size());
+    std::iota(origin_.begin(), origin_.end(), 0u);
     keep_.assign(polygons_.size(), 1);
     merge_points();
     drop_repeated_corners();
     if (options_.snap_t_junctions && tolerance_ > 0) snap_t_junctions();
+    if (options_.flatten) {
+      const FlattenReport flat = flatten_polygons(points_, polygons_, keep_, options_.flattening);
+      report_.flattened_polygons = flat.flattened_polygons;
+      report_.warped_polygons = flat.warped_polygons;
+      report_.largest_flattening_move = flat.largest_move;
+    }
     triangulate();
     drop_bad_triangles();
+    if (options_.imprint) imprint();
     cut_non_manifold_edges();
     emit(out);
   }
 
  private:
   void note_problem(std::size_t polygon) {
-    if (report_.first_problem.empty()) report_.first_problem = in_.where(polygon);
+    if (report_.first_problem.empty()) report_.first_problem = in_.where(origin_[polygon]);
   }
 
   std::vector<Point3> cgal_points(const std::vector<std::size_t>& ids) const {
@@ -334,8 +254,12 @@ class Cleaner {
     }
   }
 
-  // Step 4.
+  // Step 5. Each polygon's triangles face the way the polygon does; `warped_` notes
+  // the polygons triangulated by hole filling (their triangles are not in one plane).
   void triangulate() {
+    triangles_.clear();
+    source_.clear();
+    warped_.assign(polygons_.size(), 0);
     for (std::size_t p = 0; p < polygons_.size(); ++p) {
       if (!keep_[p]) continue;
       const auto& poly = polygons_[p];
@@ -346,10 +270,11 @@ class Cleaner {
       ++report_.triangulated_polygons;
       std::vector<Triangle> tris;
       const Vec3d normal = newell_normal(points_, poly);
-      bool ok = triangulate_planar(points_, poly, normal, tris);
+      bool ok = triangulate_polygon(points_, poly, normal, tris);
       if (!ok) {
         tris.clear();
         ok = triangulate_warped(points_, poly, tris);
+        warped_[p] = 1;
       }
       if (!ok) {
         ++report_.untriangulatable_polygons;
@@ -365,12 +290,131 @@ class Cleaner {
     }
   }
 
+  // Step 7. Facets (planar polygons, or each triangle of a warped one) are imprinted with
+  // the lines where others meet them and triangulated again; the whole triangle set is
+  // then merged, snapped and triangulated once more, so that the points made on both
+  // sides of a line are shared; last, the pieces no light reaches are removed.
+  void imprint() {
+    std::vector<Facet> facets;
+    std::vector<std::uint32_t> facet_of(triangles_.size());
+    std::vector<std::uint32_t> facet_polygon;  // input polygon of each facet
+    std::vector<std::uint32_t> polygon_facet(polygons_.size(), UINT32_MAX);
+    auto add_facet = [&](std::vector<std::uint32_t> loop, std::uint32_t polygon) {
+      Facet facet;
+      facet.normal = newell_normal(points_, loop).normalized();
+      facet.point = Vec3d(0.0);
+      for (auto v : loop) facet.point += points_[v];
+      facet.point /= static_cast<double>(loop.size());
+      facet.loop = std::move(loop);
+      facets.push_back(std::move(facet));
+      facet_polygon.push_back(origin_[polygon]);
+      return static_cast<std::uint32_t>(facets.size() - 1);
+    };
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const std::uint32_t p = source_[i];
+      if (warped_[p]) {
+        const Triangle& t = triangles_[i];
+        facet_of[i] = add_facet({t[0], t[1], t[2]}, p);
+      } else {
+        if (polygon_facet[p] == UINT32_MAX) polygon_facet[p] = add_facet(polygons_[p], p);
+        facet_of[i] = polygon_facet[p];
+      }
+    }
+    Imprints found = find_imprints(points_, facets, triangles_, facet_of, tolerance_);
+
+    // Facets with lines on them, triangulated again (in the order of their first triangle).
+    std::vector<std::vector<Triangle>> redone(facets.size());
+    std::set<Segment> lines;
+    for (std::uint32_t f = 0; f < facets.size(); ++f) {
+      std::vector<Segment>& segments = found.segments[f];
+      if (segments.empty()) continue;
+      snap_ends_to_corners(facets[f].loop, segments);
+      const auto loop = loop_through_segment_ends(points_, facets[f].loop, segments, tolerance_);
+      if (!triangulate_polygon_with_segments(points_, loop, facets[f].normal, facets[f].point, segments,
+                                             redone[f])) {
+        redone[f].clear();
+        if (report_.imprint_failures++ == 0) report_.first_imprint_failure = in_.where(facet_polygon[f]);
+        continue;
+      }
+      ++report_.imprinted_facets;
+      for (Segment s : segments) {
+        if (s[0] > s[1]) std::swap(s[0], s[1]);
+        lines.insert(s);
+      }
+    }
+    report_.imprinted_edges = lines.size();
+    std::vector<std::vector<std::uint32_t>> polygons;
+    std::vector<std::uint32_t> origin, polygon_facet_2;
+    std::vector<char> emitted(facets.size(), 0);
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const std::uint32_t f = facet_of[i];
+      if (redone[f].empty()) {
+        polygons.push_back({triangles_[i][0], triangles_[i][1], triangles_[i][2]});
+        origin.push_back(facet_polygon[f]);
+        polygon_facet_2.push_back(f);
+      } else if (!emitted[f]) {
+        emitted[f] = 1;
+        for (const Triangle& t : redone[f]) {
+          polygons.push_back({t[0], t[1], t[2]});
+          origin.push_back(facet_polygon[f]);
+          polygon_facet_2.push_back(f);
+        }
+      }
+    }
+
+    // Steps 1-3, 5 and 6 again, on the triangles: what they repair now was made by
+    // imprinting, so the counts of the first pass stand.
+    const CleanupReport first_pass = report_;
+    polygons_ = std::move(polygons);
+    origin_ = std::move(origin);
+    keep_.assign(polygons_.size(), 1);
+    merge_points();
+    drop_repeated_corners();
+    if (options_.snap_t_junctions && tolerance_ > 0) snap_t_junctions();
+    triangulate();
+    drop_bad_triangles();
+    report_ = first_pass;
+
+    std::vector<std::uint32_t> triangle_facet(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) triangle_facet[i] = polygon_facet_2[source_[i]];
+    std::vector<double> polygon_area(facets.size());
+    for (std::size_t f = 0; f < facets.size(); ++f)
+      polygon_area[f] = 0.5 * newell_normal(in_.points, in_.polygons[facet_polygon[f]]).norm();
+    HiddenReport hidden;
+    const std::vector<char> is_hidden = find_hidden_triangles(
+        {points_, triangles_, triangle_facet, found.touched, found.overlaps, polygon_area, tolerance_},
+        options_.hidden, hidden);
+    report_.hidden_pieces = hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
+    report_.hidden_area = hidden.hidden_area;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      if (is_hidden[i]) continue;
+      triangles_[kept] = triangles_[i];
+      source_[kept++] = source_[i];
+    }
+    triangles_.resize(kept);
+    source_.resize(kept);
+  }
+
+  // A segment's end within the tolerance of a corner of the loop is that corner.
+  void snap_ends_to_corners(const std::vector<std::uint32_t>& loop, std::vector<Segment>& segments) const {
+    for (Segment& s : segments)
+      for (auto& end : s)
+        for (auto corner : loop)
+          if (end != corner && (points_[end] - points_[corner]).sqrnorm() <= tolerance_ * tolerance_) {
+            end = corner;
+            break;
+          }
+    segments.erase(std::remove_if(segments.begin(), segments.end(), [](const Segment& s) { return s[0] == s[1]; }),
+                   segments.end());
+  }
+
   void add_triangle(const Triangle& t, std::size_t polygon) {
     triangles_.push_back(t);
     source_.push_back(static_cast<std::uint32_t>(polygon));
   }
 
-  // Step 5.
+  // Step 6.
   void drop_bad_triangles() {
     struct Hash {
       std::size_t operator()(const Triangle& t) const {
@@ -403,7 +447,7 @@ class Cleaner {
     source_.swap(kept_source);
   }
 
-  // Step 6. Corners (triangle t, corner k) around a point are joined across manifold
+  // Step 8. Corners (triangle t, corner k) around a point are joined across manifold
   // edges; each resulting fan keeps or gets its own copy of the point.
   void cut_non_manifold_edges() {
     struct EdgeUse {
@@ -477,7 +521,7 @@ class Cleaner {
         v = remap[v];
       }
       out.triangles.push_back(t);
-      const std::uint32_t p = source_[i];
+      const std::uint32_t p = origin_[source_[i]];
       out.material.push_back(in_.material[p]);
       out.group.push_back(in_.group[p]);
       out.origin.push_back(in_.origin[p]);
@@ -493,6 +537,8 @@ class Cleaner {
   std::vector<Vec3d> points_;
   std::vector<std::vector<std::uint32_t>> polygons_;
   std::vector<char> keep_;
+  std::vector<std::uint32_t> origin_;  // per entry of polygons_: the input polygon it comes from
+  std::vector<char> warped_;           // per entry of polygons_: triangulated by hole filling
   std::vector<std::size_t> representative_;
   std::vector<Triangle> triangles_;
   std::vector<std::uint32_t> source_;  // polygon each triangle came from

@@ -90,6 +90,11 @@ LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const Cl
     scene.warnings.push_back(std::to_string(scene.cleanup.untriangulatable_polygons) +
                              " self-intersecting polygons could not be triangulated and were dropped (first: " +
                              scene.cleanup.first_problem + ").");
+  if (scene.cleanup.imprint_failures > 0)
+    scene.warnings.push_back(std::to_string(scene.cleanup.imprint_failures) +
+                             " faces could not be imprinted where other surfaces meet them (first: " +
+                             scene.cleanup.first_imprint_failure +
+                             "); they are lit as they were. Check them for self-intersections.");
   if (const std::string warning = dropped_emitters(soup, clean); !warning.empty()) scene.warnings.push_back(warning);
   scene.mesh = std::make_unique<SceneMesh>(clean);
   check_magnitudes(path, *scene.mesh);

@@ -56,10 +56,10 @@ class Obj:
         (x0, y0, z0), (x1, y1, z1) = lo, hi
         dx, dy, dz = x1 - x0, y1 - y0, z1 - z0
         self.rect(material, (x0, y0, z1), (dx, 0, 0), (0, dy, 0))        # top, facing +z
-        self.rect(material, (x0, y0, z0), (0, 0, dz), (dx, 0, 0))        # -y
-        self.rect(material, (x1, y1, z0), (0, 0, dz), (-dx, 0, 0))       # +y
-        self.rect(material, (x0, y1, z0), (0, 0, dz), (0, -dy, 0))       # -x
-        self.rect(material, (x1, y0, z0), (0, 0, dz), (0, dy, 0))        # +x
+        self.rect(material, (x0, y0, z0), (dx, 0, 0), (0, 0, dz))        # -y
+        self.rect(material, (x1, y1, z0), (-dx, 0, 0), (0, 0, dz))       # +y
+        self.rect(material, (x0, y1, z0), (0, -dy, 0), (0, 0, dz))       # -x
+        self.rect(material, (x1, y0, z0), (0, dy, 0), (0, 0, dz))        # +x
 
 
 def wall_with_opening(obj, material, origin, along, length, normal_sign, opening):

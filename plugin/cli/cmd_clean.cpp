@@ -24,8 +24,7 @@ struct CleanOptions {
 
 int run_clean(const CleanOptions& options) {
   check_output_writable(options.output);  // fail before the work, not after
-  CleanupOptions cleanup;
-  cleanup.merge_tolerance = options.load.merge_tolerance;
+  const CleanupOptions cleanup = options.load.cleanup();
   LoadedScene scene = load_scene(options.load.input, cleanup);
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
   const SceneMesh& mesh = *scene.mesh;

@@ -22,8 +22,7 @@ struct InfoOptions {
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 
 int run_info(const InfoOptions& options) {
-  CleanupOptions cleanup;
-  cleanup.merge_tolerance = options.load.merge_tolerance;
+  const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
   simplify.enabled = options.load.simplify;
   LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
@@ -57,6 +56,7 @@ int run_info(const InfoOptions& options) {
       {"non_manifold_edges", r.non_manifold_edges},
       {"split_vertices", r.split_vertices},
       {"unused_points", r.unused_points},
+      {"flattened_polygons", r.flattened_polygons},
   };
 
   if (options.json) {
@@ -87,6 +87,13 @@ int run_info(const InfoOptions& options) {
     j["emitted_power"] = rgb_json(mesh.emitted_power());
     for (const auto& [name, count] : repairs) j["repairs"][name] = count;
     j["repairs"]["total"] = r.repairs();
+    j["warped_polygons"] = r.warped_polygons;
+    j["imprint"] = {{"enabled", options.load.imprint},
+                    {"imprinted_edges", r.imprinted_edges},
+                    {"imprinted_facets", r.imprinted_facets},
+                    {"failures", r.imprint_failures},
+                    {"hidden_pieces", r.hidden_pieces},
+                    {"hidden_area", r.hidden_area}};
     for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
       const Material& mat = mesh.materials()[m];
       if (usage[m].faces == 0) continue;
@@ -121,6 +128,12 @@ int run_info(const InfoOptions& options) {
                            power.g, power.b);
   std::cout << fmt::format("repairs         {}\n", r.repairs());
   for (const auto& [name, count] : repairs) std::cout << fmt::format("  {:<26}{}\n", name, count);
+  if (options.load.imprint)
+    std::cout << fmt::format("imprint         {} imprinted_edges on {} facets, {} hidden pieces, hidden_area {:.6g}{}\n",
+                             r.imprinted_edges, r.imprinted_facets, r.hidden_pieces, r.hidden_area,
+                             r.imprint_failures ? fmt::format(", {} facets failed", r.imprint_failures) : "");
+  else
+    std::cout << "imprint         off (--no-imprint)\n";
   std::cout << "materials\n";
   for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
     const Material& mat = mesh.materials()[m];

@@ -50,7 +50,7 @@ struct ProbeOptions {
   std::string lit, points, grid, model, reflectance, output;
   std::string up = "z";
   bool json = false;
-  double merge_tolerance = 1e-6;
+  LoadOptions model_load;  // how --model is read: as for solve
 };
 
 struct CalculationPoint {
@@ -339,9 +339,7 @@ int run_probe(const ProbeOptions& options) {
   std::unique_ptr<SceneMesh> model;
   std::unique_ptr<rad::Visibility> model_index;
   if (!options.model.empty()) {
-    CleanupOptions cleanup;
-    cleanup.merge_tolerance = options.merge_tolerance;
-    model = std::move(load_scene(options.model, cleanup).mesh);
+    model = std::move(load_scene(options.model, options.model_load.cleanup()).mesh);
     model_index = std::make_unique<rad::Visibility>(*model);
   }
 
@@ -462,9 +460,7 @@ Command add_probe_command(CLI::App& app) {
                       "The model the PLY was lit from: its materials give irradiance H = (B - E) / reflectance");
   command->add_option("--reflectance", options->reflectance,
                       "r[,g,b]: reflectance for all points (emission taken as 0), for irradiance");
-  command->add_option("--merge-tolerance", options->merge_tolerance, "As for solve, when reading --model")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.01));
+  add_cleanup_options(*command, options->model_load);  // as for solve, when reading --model
   command->add_flag("--json", options->json, "Print JSON instead of a table");
   command->add_option("-o,--output", options->output, "Write the table or JSON here instead of standard output");
   return [options] { return run_probe(*options); };

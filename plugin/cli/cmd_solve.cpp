@@ -120,8 +120,7 @@ int run_solve(SolveCliOptions& options) {
   if (!options.report.empty()) check_output_writable(options.report);
   if (!options.preview.empty()) check_output_writable(options.preview);
 
-  CleanupOptions cleanup;
-  cleanup.merge_tolerance = options.load.merge_tolerance;
+  const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
   simplify.enabled = options.load.simplify;
   LoadedScene scene = load_scene(options.load.input, cleanup, simplify);

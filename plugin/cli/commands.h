@@ -2,6 +2,8 @@
 // returns the function that runs it.
 #pragma once
 
+#include "mesh/cleanup.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -27,9 +29,19 @@ Command add_probe_command(CLI::App& app);
 struct LoadOptions {
   std::string input;
   double merge_tolerance = 1e-6;
+  bool imprint = true;   // imprint where surfaces meet, remove hidden parts (mesh/imprint.h)
   bool simplify = true;  // merge flat regions before patching (mesh/simplify.h)
+
+  CleanupOptions cleanup() const {
+    CleanupOptions options;
+    options.merge_tolerance = merge_tolerance;
+    options.imprint = imprint;
+    return options;
+  }
 };
 void add_load_options(CLI::App& command, LoadOptions& options);
+// `--merge-tolerance` and `--no-imprint` alone, for a command that loads a second model.
+void add_cleanup_options(CLI::App& command, LoadOptions& options);
 // `--no-simplify`, for the commands that patch the model (solve, info).
 void add_simplify_flag(CLI::App& command, LoadOptions& options);
 

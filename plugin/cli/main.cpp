@@ -11,13 +11,19 @@
 
 namespace dynrad::cli {
 
-void add_load_options(CLI::App& command, LoadOptions& options) {
-  command.add_option("input", options.input, "Model (.obj, .ply, .off, .stl) or scene file (.json)")->required();
+void add_cleanup_options(CLI::App& command, LoadOptions& options) {
   command
       .add_option("--merge-tolerance", options.merge_tolerance,
                   "Merge points closer than this fraction of the scene's bounding-box diagonal")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.01));
+  command.add_flag("!--no-imprint", options.imprint,
+                   "Do not imprint where surfaces cross or touch, and keep the parts no light reaches (for comparison)");
+}
+
+void add_load_options(CLI::App& command, LoadOptions& options) {
+  command.add_option("input", options.input, "Model (.obj, .ply, .off, .stl) or scene file (.json)")->required();
+  add_cleanup_options(command, options);
 }
 
 void add_simplify_flag(CLI::App& command, LoadOptions& options) {

@@ -1,0 +1,182 @@
+// Constrained Delaunay triangulation of a polygon in its plane (CGAL). A CGAL
+// translation unit: slow to compile, so it holds only this.
+#include "mesh/polygon_triangulation.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <cmath>
+#include <queue>
+
+namespace dynrad {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+struct FaceInfo {
+  int nesting = -1;
+  bool inside() const { return nesting % 2 == 1; }
+};
+// CGAL default-initialises vertex info, which leaves a bare integer with whatever the
+// memory held; a struct with an initialiser starts at 0 ("unset") every time.
+struct CornerInfo {
+  std::uint32_t index_plus_one = 0;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<CornerInfo, K>;
+using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// The loop alone: constraints must not cross (a crossing means a self-intersecting loop).
+using LoopCdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+// Loop and segments: segments may cross each other; CGAL inserts the crossing points.
+using SegmentCdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+
+// Marks faces by how many constraints separate them from the infinite face; faces at
+// odd depth are inside the polygon. Only valid when every constraint is a loop edge.
+void mark_nesting(LoopCdt& cdt) {
+  for (auto f : cdt.all_face_handles()) f->info().nesting = -1;
+  std::queue<std::pair<LoopCdt::Face_handle, int>> border;
+  border.emplace(cdt.infinite_face(), 0);
+  while (!border.empty()) {
+    auto [start, level] = border.front();
+    border.pop();
+    if (start->info().nesting != -1) continue;
+    std::queue<LoopCdt::Face_handle> region;
+    region.push(start);
+    start->info().nesting = level;
+    while (!region.empty()) {
+      auto f = region.front();
+      region.pop();
+      for (int i = 0; i < 3; ++i) {
+        auto n = f->neighbor(i);
+        if (n->info().nesting != -1) continue;
+        if (cdt.is_constrained(LoopCdt::Edge(f, i))) {
+          border.emplace(n, level + 1);
+        } else {
+          n->info().nesting = level;
+          region.push(n);
+        }
+      }
+    }
+  }
+}
+
+// An orthonormal basis (u, v, n): counter-clockwise in (u, v) means facing along n.
+struct Frame {
+  Vec3d u, v, n;
+  explicit Frame(const Vec3d& normal) : n(normal.normalized()) {
+    const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
+    u = OpenMesh::cross(helper, n).normalized();
+    v = OpenMesh::cross(n, u);
+  }
+};
+
+}  // namespace
+
+Vec3d newell_normal(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& loop) {
+  Vec3d n(0.0);
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec3d& a = pts[loop[i]];
+    const Vec3d& b = pts[loop[(i + 1) % loop.size()]];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  return n;  // length = twice the (projected) area
+}
+
+bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& loop, const Vec3d& normal,
+                         std::vector<Triangle>& out) {
+  const Frame frame(normal);
+  LoopCdt cdt;
+  std::vector<LoopCdt::Vertex_handle> handles;
+  handles.reserve(loop.size());
+  try {
+    for (auto index : loop) {
+      const Vec3d& p = pts[index];
+      auto vh = cdt.insert(K::Point_2(OpenMesh::dot(p, frame.u), OpenMesh::dot(p, frame.v)));
+      auto& corner = vh->info().index_plus_one;
+      if (corner != 0 && corner != index + 1) return false;  // two corners project onto one point
+      corner = index + 1;
+      handles.push_back(vh);
+    }
+    for (std::size_t i = 0; i < handles.size(); ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
+  } catch (const LoopCdt::Intersection_of_constraints_exception&) {
+    return false;  // self-intersecting loop
+  }
+  mark_nesting(cdt);
+  std::vector<Triangle> made;
+  for (auto f : cdt.finite_face_handles()) {
+    if (!f->info().inside()) continue;
+    made.push_back({f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
+                    f->vertex(2)->info().index_plus_one - 1});
+  }
+  if (made.size() + 2 != loop.size()) return false;  // a simple n-gon without Steiner points has n-2 triangles
+  out.insert(out.end(), made.begin(), made.end());
+  return true;
+}
+
+bool triangulate_polygon_with_segments(std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
+                                       const Vec3d& normal, const Vec3d& plane_point,
+                                       const std::vector<Segment>& segments, std::vector<Triangle>& out) {
+  const Frame frame(normal);
+  auto to_2d = [&](const Vec3d& p) {
+    const Vec3d d = p - plane_point;
+    return K::Point_2(OpenMesh::dot(d, frame.u), OpenMesh::dot(d, frame.v));
+  };
+  SegmentCdt cdt;
+  std::vector<SegmentCdt::Vertex_handle> corners;
+  std::vector<K::Point_2> outline;
+  auto insert = [&](std::uint32_t index) {
+    auto vh = cdt.insert(to_2d(points[index]));
+    auto& id = vh->info().index_plus_one;
+    if (id == 0) id = index + 1;  // two points on one spot: the first named keeps it
+    return vh;
+  };
+  for (auto index : loop) {
+    corners.push_back(insert(index));
+    outline.push_back(corners.back()->point());
+  }
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    if (corners[i] != corners[(i + 1) % corners.size()]) cdt.insert_constraint(corners[i], corners[(i + 1) % corners.size()]);
+  }
+  for (const Segment& s : segments) {
+    auto a = insert(s[0]), b = insert(s[1]);
+    if (a != b) cdt.insert_constraint(a, b);
+  }
+  // Points CGAL made where segments cross: lifted onto the plane.
+  for (auto v : cdt.finite_vertex_handles()) {
+    if (v->info().index_plus_one != 0) continue;
+    const auto& p = v->point();
+    points.push_back(plane_point + frame.u * p.x() + frame.v * p.y());
+    v->info().index_plus_one = static_cast<std::uint32_t>(points.size());
+  }
+  // Inside or outside the loop, by each face's centroid: interior segments are
+  // constraints too, so counting constraints crossed would not tell.
+  std::vector<Triangle> made;
+  double made_area = 0;
+  for (auto f : cdt.finite_face_handles()) {
+    const auto centroid = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+    if (CGAL::bounded_side_2(outline.begin(), outline.end(), centroid, K()) != CGAL::ON_BOUNDED_SIDE) continue;
+    const Triangle t{f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
+                     f->vertex(2)->info().index_plus_one - 1};
+    made.push_back(t);
+    made_area += CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+  }
+  double loop_area = 0;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const auto& a = outline[i];
+    const auto& b = outline[(i + 1) % outline.size()];
+    loop_area += 0.5 * (a.x() * b.y() - b.x() * a.y());
+  }
+  if (!(std::abs(made_area - std::abs(loop_area)) <= 1e-9 * std::abs(loop_area))) return false;
+  // CGAL's faces are counter-clockwise in (u, v): they face along the normal.
+  out.insert(out.end(), made.begin(), made.end());
+  return true;
+}
+
+}  // namespace dynrad
