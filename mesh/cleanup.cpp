@@ -254,12 +254,10 @@ class Cleaner {
     }
   }
 
-  // Step 5. Each polygon's triangles face the way the polygon does; `warped_` notes
-  // the polygons triangulated by hole filling (their triangles are not in one plane).
+  // Step 5. Each polygon's triangles face the way the polygon does.
   void triangulate() {
     triangles_.clear();
     source_.clear();
-    warped_.assign(polygons_.size(), 0);
     for (std::size_t p = 0; p < polygons_.size(); ++p) {
       if (!keep_[p]) continue;
       const auto& poly = polygons_[p];
@@ -274,7 +272,6 @@ class Cleaner {
       if (!ok) {
         tris.clear();
         ok = triangulate_warped(points_, poly, tris);
-        warped_[p] = 1;
       }
       if (!ok) {
         ++report_.untriangulatable_polygons;
@@ -295,47 +292,36 @@ class Cleaner {
   // then merged, snapped and triangulated once more, so that the points made on both
   // sides of a line are shared; last, the pieces no light reaches are removed.
   void imprint() {
-    std::vector<Facet> facets;
-    std::vector<std::uint32_t> facet_of(triangles_.size());
-    std::vector<std::uint32_t> facet_polygon;  // input polygon of each facet
-    std::vector<std::uint32_t> polygon_facet(polygons_.size(), UINT32_MAX);
-    auto add_facet = [&](std::vector<std::uint32_t> loop, std::uint32_t polygon) {
-      Facet facet;
-      facet.normal = newell_normal(points_, loop).normalized();
-      facet.point = Vec3d(0.0);
-      for (auto v : loop) facet.point += points_[v];
-      facet.point /= static_cast<double>(loop.size());
-      facet.loop = std::move(loop);
-      facets.push_back(std::move(facet));
-      facet_polygon.push_back(origin_[polygon]);
-      return static_cast<std::uint32_t>(facets.size() - 1);
-    };
+    std::vector<std::uint64_t> label(triangles_.size());
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      const std::uint32_t p = source_[i];
-      if (warped_[p]) {
-        const Triangle& t = triangles_[i];
-        facet_of[i] = add_facet({t[0], t[1], t[2]}, p);
-      } else {
-        if (polygon_facet[p] == UINT32_MAX) polygon_facet[p] = add_facet(polygons_[p], p);
-        facet_of[i] = polygon_facet[p];
-      }
+      const std::uint32_t p = origin_[source_[i]];
+      label[i] = static_cast<std::uint64_t>(in_.material[p]) << 32 | in_.group[p];
     }
+    std::vector<std::uint32_t> facet_of;
+    const std::vector<Facet> facets = make_facets(points_, triangles_, label, tolerance_, facet_of);
     Imprints found = find_imprints(points_, facets, triangles_, facet_of, tolerance_);
 
-    // Facets with lines on them, triangulated again (in the order of their first triangle).
+    // Facets with lines on them, triangulated again; each new triangle keeps the input
+    // polygon of the old triangle that holds it.
     std::vector<std::vector<Triangle>> redone(facets.size());
+    std::vector<std::vector<std::uint32_t>> redone_polygon(facets.size());
     std::set<Segment> lines;
     for (std::uint32_t f = 0; f < facets.size(); ++f) {
       std::vector<Segment>& segments = found.segments[f];
       if (segments.empty()) continue;
-      snap_ends_to_corners(facets[f].loop, segments);
-      const auto loop = loop_through_segment_ends(points_, facets[f].loop, segments, tolerance_);
-      if (!triangulate_polygon_with_segments(points_, loop, facets[f].normal, facets[f].point, segments,
-                                             redone[f])) {
+      snap_ends_to_corners(facets[f].outline, segments);
+      const auto outline = split_outline(points_, facets[f].outline, segments, tolerance_);
+      std::vector<Triangle> region;
+      for (auto t : facets[f].triangles) region.push_back(triangles_[t]);
+      std::vector<std::uint32_t> holder;
+      if (!triangulate_region(points_, region, outline, segments, facets[f].normal, facets[f].point, redone[f],
+                              holder)) {
         redone[f].clear();
-        if (report_.imprint_failures++ == 0) report_.first_imprint_failure = in_.where(facet_polygon[f]);
+        if (report_.imprint_failures++ == 0)
+          report_.first_imprint_failure = in_.where(origin_[source_[facets[f].triangles[0]]]);
         continue;
       }
+      for (auto k : holder) redone_polygon[f].push_back(origin_[source_[facets[f].triangles[k]]]);
       ++report_.imprinted_facets;
       for (Segment s : segments) {
         if (s[0] > s[1]) std::swap(s[0], s[1]);
@@ -344,23 +330,25 @@ class Cleaner {
     }
     report_.imprinted_edges = lines.size();
     std::vector<std::vector<std::uint32_t>> polygons;
-    std::vector<std::uint32_t> origin, polygon_facet_2;
+    std::vector<std::uint32_t> origin, polygon_facet;
     std::vector<char> emitted(facets.size(), 0);
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
       const std::uint32_t f = facet_of[i];
       if (redone[f].empty()) {
         polygons.push_back({triangles_[i][0], triangles_[i][1], triangles_[i][2]});
-        origin.push_back(facet_polygon[f]);
-        polygon_facet_2.push_back(f);
+        origin.push_back(origin_[source_[i]]);
+        polygon_facet.push_back(f);
       } else if (!emitted[f]) {
         emitted[f] = 1;
-        for (const Triangle& t : redone[f]) {
+        for (std::size_t k = 0; k < redone[f].size(); ++k) {
+          const Triangle& t = redone[f][k];
           polygons.push_back({t[0], t[1], t[2]});
-          origin.push_back(facet_polygon[f]);
-          polygon_facet_2.push_back(f);
+          origin.push_back(redone_polygon[f][k]);
+          polygon_facet.push_back(f);
         }
       }
     }
+    const double area_before = triangles_area();
 
     // Steps 1-3, 5 and 6 again, on the triangles: what they repair now was made by
     // imprinting, so the counts of the first pass stand.
@@ -376,16 +364,14 @@ class Cleaner {
     report_ = first_pass;
 
     std::vector<std::uint32_t> triangle_facet(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) triangle_facet[i] = polygon_facet_2[source_[i]];
-    std::vector<double> polygon_area(facets.size());
-    for (std::size_t f = 0; f < facets.size(); ++f)
-      polygon_area[f] = 0.5 * newell_normal(in_.points, in_.polygons[facet_polygon[f]]).norm();
+    for (std::size_t i = 0; i < triangles_.size(); ++i) triangle_facet[i] = polygon_facet[source_[i]];
+    std::vector<double> facet_area(facets.size(), 0.0);
+    for (std::size_t i = 0; i < triangles_.size(); ++i) facet_area[triangle_facet[i]] += triangle_area(triangles_[i]);
     HiddenReport hidden;
     const std::vector<char> is_hidden = find_hidden_triangles(
-        {points_, triangles_, triangle_facet, found.touched, found.overlaps, polygon_area, tolerance_},
+        {points_, triangles_, triangle_facet, found.touched, found.overlaps, facet_area, tolerance_},
         options_.hidden, hidden);
     report_.hidden_pieces = hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
-    report_.hidden_area = hidden.hidden_area;
     std::size_t kept = 0;
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
       if (is_hidden[i]) continue;
@@ -394,17 +380,31 @@ class Cleaner {
     }
     triangles_.resize(kept);
     source_.resize(kept);
+    // What left: hidden pieces, and copies in one plane that the second pass found to be
+    // duplicates.
+    report_.hidden_area = std::max(0.0, area_before - triangles_area());
   }
 
-  // A segment's end within the tolerance of a corner of the loop is that corner.
-  void snap_ends_to_corners(const std::vector<std::uint32_t>& loop, std::vector<Segment>& segments) const {
+  double triangle_area(const Triangle& t) const {
+    return 0.5 * OpenMesh::cross(points_[t[1]] - points_[t[0]], points_[t[2]] - points_[t[0]]).norm();
+  }
+  double triangles_area() const {
+    double sum = 0;
+    for (const Triangle& t : triangles_) sum += triangle_area(t);
+    return sum;
+  }
+
+  // A segment's end within the tolerance of a corner of the outline is that corner.
+  void snap_ends_to_corners(const std::vector<Segment>& outline, std::vector<Segment>& segments) const {
     for (Segment& s : segments)
       for (auto& end : s)
-        for (auto corner : loop)
+        for (const Segment& edge : outline) {
+          const std::uint32_t corner = edge[0];
           if (end != corner && (points_[end] - points_[corner]).sqrnorm() <= tolerance_ * tolerance_) {
             end = corner;
             break;
           }
+        }
     segments.erase(std::remove_if(segments.begin(), segments.end(), [](const Segment& s) { return s[0] == s[1]; }),
                    segments.end());
   }
@@ -538,7 +538,6 @@ class Cleaner {
   std::vector<std::vector<std::uint32_t>> polygons_;
   std::vector<char> keep_;
   std::vector<std::uint32_t> origin_;  // per entry of polygons_: the input polygon it comes from
-  std::vector<char> warped_;           // per entry of polygons_: triangulated by hole filling
   std::vector<std::size_t> representative_;
   std::vector<Triangle> triangles_;
   std::vector<std::uint32_t> source_;  // polygon each triangle came from

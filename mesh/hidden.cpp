@@ -75,16 +75,40 @@ class HiddenFinder {
   std::vector<char> run() {
     make_pieces();
     build_tree();
+    find_links();
     const std::vector<Vec3d> directions = cosine_directions(options_.rays);
-    for (Piece& piece : pieces_) {
-      if (!piece.tested) continue;
-      ++report_.pieces_tested;
-      if (enclosed(piece, directions)) {
-        piece.state = Piece::State::enclosed;
-        ++report_.enclosed_pieces;
+    // A ray that reaches the front of a hidden piece has stayed in the space that piece
+    // faces, which is closed: it counts as closed too. So a piece is tested again when
+    // one whose front it saw becomes hidden, until nothing changes.
+    std::vector<std::vector<std::uint32_t>> seen(pieces_.size());
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t p = 0; p < pieces_.size(); ++p)
+      if (pieces_[p].tested) queue.push_back(p);
+    report_.pieces_tested = queue.size();
+    std::vector<char> changed(pieces_.size(), 0);
+    while (!queue.empty()) {
+      std::vector<std::uint32_t> now_hidden;
+      for (auto p : queue) {
+        if (pieces_[p].state != Piece::State::visible) continue;
+        seen[p].clear();
+        if (enclosed(pieces_[p], directions, seen[p])) {
+          pieces_[p].state = Piece::State::enclosed;
+          ++report_.enclosed_pieces;
+          now_hidden.push_back(p);
+        }
       }
+      const auto contacts = hide_face_to_face();
+      now_hidden.insert(now_hidden.end(), contacts.begin(), contacts.end());
+      for (auto p : now_hidden) changed[p] = 1;
+      queue.clear();
+      for (std::uint32_t p = 0; p < pieces_.size(); ++p) {
+        if (!pieces_[p].tested || pieces_[p].state != Piece::State::visible) continue;
+        if (std::any_of(seen[p].begin(), seen[p].end(), [&](std::uint32_t q) { return changed[q]; }))
+          queue.push_back(p);
+      }
+      for (auto p : now_hidden) changed[p] = 0;
     }
-    apply_plane_rules();
+    hide_covered();
     std::vector<char> hidden(in_.triangles.size(), 0);
     for (const Piece& piece : pieces_) {
       if (piece.state == Piece::State::visible) continue;
@@ -167,7 +191,8 @@ class HiddenFinder {
     tree_.build();
   }
 
-  bool enclosed(const Piece& piece, const std::vector<Vec3d>& directions) const {
+  // `seen` gets the visible pieces whose fronts the rays hit.
+  bool enclosed(const Piece& piece, const std::vector<Vec3d>& directions, std::vector<std::uint32_t>& seen) const {
     const Vec3d& n = piece.normal;
     const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
     const Vec3d u = OpenMesh::cross(helper, n).normalized(), v = OpenMesh::cross(n, u);
@@ -181,9 +206,15 @@ class HiddenFinder {
     for (const Vec3d& local : directions) {
       const Vec3d d = u * local[0] + v * local[1] + n * local[2];
       const auto hit = tree_.first_intersected_primitive(K::Ray_3(source, K::Vector_3(d[0], d[1], d[2])));
-      const bool back =
-          hit && OpenMesh::dot(area_vector(static_cast<std::uint32_t>(*hit - triangles3_.begin())), d) > 0;
-      if (!back && ++open > open_allowed) return false;
+      if (hit) {
+        const auto t = static_cast<std::uint32_t>(*hit - triangles3_.begin());
+        if (OpenMesh::dot(area_vector(t), d) > 0) continue;  // a back
+        const std::uint32_t h = piece_of_[t];
+        const auto state = pieces_[h].state;
+        if (state == Piece::State::enclosed || state == Piece::State::face_to_face) continue;
+        if (std::find(seen.begin(), seen.end(), h) == seen.end()) seen.push_back(h);
+      }
+      if (++open > open_allowed) return false;
     }
     return true;
   }
@@ -201,15 +232,9 @@ class HiddenFinder {
     return UINT32_MAX;
   }
 
-  void apply_plane_rules() {
+  // Pieces that overlap in one plane, found from a point of one inside the other's facet.
+  void find_links() {
     for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) facet_triangles_[in_.facet_of[t]].push_back(t);
-    // Pieces that overlap in one plane, found from a point of one inside the other's facet.
-    struct Link {
-      std::uint32_t p, q;  // pieces
-      std::uint32_t fp, fq;  // the facets where they meet
-      bool same_facing;
-    };
-    std::vector<Link> links;
     for (const auto& overlap : in_.overlaps) {
       for (int side = 0; side < 2; ++side) {
         const std::uint32_t f = side ? overlap.b : overlap.a, other = side ? overlap.a : overlap.b;
@@ -225,38 +250,52 @@ class HiddenFinder {
           double inradius;
           const Vec3d point = incentre(best.second, inradius);
           const std::uint32_t q = piece_under(other, point, area_vector(best.second));
-          if (q != UINT32_MAX && q != p) links.push_back({p, q, f, other, overlap.same_facing});
+          if (q != UINT32_MAX && q != p) links_.push_back({p, q, f, other, overlap.same_facing});
         }
       }
     }
-    // Face to face: hidden spreads across such contacts (a chain is short: repeat).
-    for (bool changed = true; changed;) {
+  }
+
+  // Face to face: hidden spreads across such contacts. Returns the pieces it hid.
+  std::vector<std::uint32_t> hide_face_to_face() {
+    std::vector<std::uint32_t> hid;
+    for (bool changed = true; changed;) {  // a chain of contacts is short: repeat
       changed = false;
-      for (const Link& link : links) {
+      for (const Link& link : links_) {
         if (link.same_facing) continue;
-        Piece& p = pieces_[link.p];
-        Piece& q = pieces_[link.q];
-        if ((p.state == Piece::State::visible) == (q.state == Piece::State::visible)) continue;
-        Piece& now_hidden = p.state == Piece::State::visible ? p : q;
-        now_hidden.state = Piece::State::face_to_face;
+        const bool p_visible = pieces_[link.p].state == Piece::State::visible;
+        if (p_visible == (pieces_[link.q].state == Piece::State::visible)) continue;
+        const std::uint32_t now = p_visible ? link.p : link.q;
+        pieces_[now].state = Piece::State::face_to_face;
         ++report_.face_to_face_pieces;
+        hid.push_back(now);
         changed = true;
       }
     }
-    // Covered: of two visible pieces facing the same way, the smaller polygon's stays
-    // (the later one when they are equal).
-    for (const Link& link : links) {
+    return hid;
+  }
+
+  // Covered: of two visible pieces facing the same way, the smaller facet's stays (the
+  // later one when they are equal).
+  void hide_covered() {
+    for (const Link& link : links_) {
       if (!link.same_facing) continue;
       Piece& p = pieces_[link.p];
       Piece& q = pieces_[link.q];
       if (p.state != Piece::State::visible || q.state != Piece::State::visible) continue;
-      const double ap = in_.polygon_area[link.fp], aq = in_.polygon_area[link.fq];
+      const double ap = in_.facet_area[link.fp], aq = in_.facet_area[link.fq];
       const bool keep_p = ap < aq || (ap == aq && link.fp > link.fq);
       (keep_p ? q : p).state = Piece::State::covered;
       ++report_.covered_pieces;
     }
   }
 
+  struct Link {
+    std::uint32_t p, q;    // pieces
+    std::uint32_t fp, fq;  // the facets where they meet
+    bool same_facing;
+  };
+  std::vector<Link> links_;
   const HiddenInput& in_;
   const HiddenOptions& options_;
   HiddenReport& report_;

@@ -12,7 +12,7 @@
 //      back to back where neither is hidden (a wall drawn as two faces with no
 //      thickness) both stay;
 //   3. covered: two pieces in one plane facing the same way (a lamp drawn on a
-//      ceiling, a rug on a floor): the piece of the smaller polygon stays, the other
+//      ceiling, a rug on a floor): the piece of the smaller facet stays, the other
 //      goes, as the detail drawn on a surface is meant to be seen.
 #pragma once
 
@@ -42,7 +42,7 @@ struct HiddenInput {
   const std::vector<std::uint32_t>& facet_of;    // per triangle
   const std::vector<char>& touched;              // per facet: only these are tested
   const std::vector<Imprints::Overlap>& overlaps;
-  const std::vector<double>& polygon_area;       // per facet: its polygon's area, for rule 3
+  const std::vector<double>& facet_area;         // per facet, for rule 3
   double tolerance;                              // as for imprinting
 };
 

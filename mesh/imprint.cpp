@@ -94,9 +94,22 @@ class Imprinter {
         original_points_(static_cast<std::uint32_t>(points.size())) {
     offset_.resize(facets.size());
     for (std::size_t f = 0; f < facets.size(); ++f) offset_[f] = OpenMesh::dot(facets[f].normal, facets[f].point);
+    // Who runs each edge which way, to tell an outline edge that bounds what lies in
+    // its plane from one that another facet in the plane, facing the same way, runs
+    // the other way (a triangle cleanup dropped as a copy of that facet's).
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> runs;  // (from, to) -> facets
+    for (std::uint32_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) runs[{triangles[t][k], triangles[t][(k + 1) % 3]}].push_back(facet_of[t]);
     for (std::uint32_t f = 0; f < facets.size(); ++f) {
-      const auto& loop = facets[f].loop;
-      for (std::size_t k = 0; k < loop.size(); ++k) loop_edges_.insert(edge_key(f, loop[k], loop[(k + 1) % loop.size()]));
+      for (const Segment& e : facets[f].outline) {
+        bool covered_beyond = false;
+        auto it = runs.find({e[1], e[0]});
+        if (it != runs.end())
+          for (auto g : it->second)
+            covered_beyond = covered_beyond || (OpenMesh::dot(facets[g].normal, facets[f].normal) > 1 - 1e-9 &&
+                                                std::abs(offset_[g] - offset_[f]) <= tolerance_);
+        if (!covered_beyond) outline_edges_.insert(edge_key(f, e[0], e[1]));
+      }
     }
   }
 
@@ -289,7 +302,7 @@ class Imprinter {
     const std::uint32_t facet = facet_of_[from];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      if (!loop_edges_.count(edge_key(facet, a, b))) continue;  // a diagonal inside its facet
+      if (!outline_edges_.count(edge_key(facet, a, b))) continue;  // inside its facet
       const auto& pa = p[k];
       const auto& pb = p[(k + 1) % 3];
       const double length = std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
@@ -339,7 +352,7 @@ class Imprinter {
   const double tolerance_;
   const std::uint32_t original_points_;
   std::vector<double> offset_;
-  std::set<EdgeKey> loop_edges_;
+  std::set<EdgeKey> outline_edges_;
   std::map<std::array<std::uint32_t, 3>, std::uint32_t> edge_plane_;
   std::map<std::array<std::uint32_t, 4>, std::uint32_t> edge_edge_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Piece>> line_pieces_;
@@ -360,33 +373,128 @@ Imprints find_imprints(std::vector<Vec3d>& points, const std::vector<Facet>& fac
   return Imprinter(points, facets, triangles, facet_of, tolerance).run();
 }
 
-std::vector<std::uint32_t> loop_through_segment_ends(const std::vector<Vec3d>& points,
-                                                     const std::vector<std::uint32_t>& loop,
-                                                     const std::vector<Segment>& segments, double tolerance) {
+std::vector<Facet> make_facets(const std::vector<Vec3d>& points, const std::vector<Triangle>& triangles,
+                               const std::vector<std::uint64_t>& label, double tolerance,
+                               std::vector<std::uint32_t>& facet_of) {
+  auto area_vector = [&](std::uint32_t t) {
+    const Triangle& c = triangles[t];
+    return OpenMesh::cross(points[c[1]] - points[c[0]], points[c[2]] - points[c[0]]) * 0.5;
+  };
+  // (edge, triangle, corner) for every side, sorted by edge: an edge's users are a run.
+  struct Side {
+    std::uint64_t edge;
+    std::uint32_t triangle;
+    int corner;  // the side runs from this corner to the next
+    bool operator<(const Side& o) const { return edge < o.edge || (edge == o.edge && triangle < o.triangle); }
+  };
+  std::vector<Side> sides;
+  sides.reserve(triangles.size() * 3);
+  for (std::uint32_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      sides.push_back({std::min(a, b) << 32 | std::max(a, b), t, k});
+    }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::uint32_t> parent(triangles.size());
+  for (std::uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<char> interior(sides.size(), 0);  // the side is shared within a facet
+  auto join = [&](std::size_t i, std::size_t j) {
+    const Side& x = sides[i];
+    const Side& y = sides[j];
+    const std::uint32_t tx = x.triangle, ty = y.triangle;
+    const bool opposite = triangles[tx][x.corner] == triangles[ty][(y.corner + 1) % 3];
+    const Vec3d nx = area_vector(tx).normalized(), ny = area_vector(ty).normalized();
+    // The other triangle's far corner on this one's plane, and the same facing.
+    const std::uint32_t far = triangles[ty][(y.corner + 2) % 3];
+    const double off_plane = std::abs(OpenMesh::dot(nx, points[far] - points[triangles[tx][0]]));
+    if (!opposite || off_plane > tolerance || OpenMesh::dot(nx, ny) <= 1 - 1e-9) return;
+    interior[i] = interior[j] = 1;
+    const std::uint32_t rx = find(tx), ry = find(ty);
+    if (rx != ry) parent[std::max(rx, ry)] = std::min(rx, ry);
+  };
+  // An edge joins the two triangles of one label that use it (other surfaces may use
+  // it too: two coplanar faces cut alike where they overlap).
+  std::vector<std::size_t> users;
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
+    users.clear();
+    for (std::size_t k = i; k < j; ++k) users.push_back(k);
+    std::sort(users.begin(), users.end(),
+              [&](std::size_t a, std::size_t b) { return label[sides[a].triangle] < label[sides[b].triangle]; });
+    for (std::size_t k = 0; k < users.size();) {
+      std::size_t m = k;
+      while (m < users.size() && label[sides[users[m]].triangle] == label[sides[users[k]].triangle]) ++m;
+      if (m - k == 2) join(users[k], users[k + 1]);
+      k = m;
+    }
+    i = j;
+  }
+  std::vector<Facet> facets;
+  facet_of.assign(triangles.size(), UINT32_MAX);
+  std::vector<std::uint32_t> facet_of_root(triangles.size(), UINT32_MAX);
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    std::uint32_t& f = facet_of_root[find(t)];
+    if (f == UINT32_MAX) {
+      f = static_cast<std::uint32_t>(facets.size());
+      facets.emplace_back();
+    }
+    facets[f].triangles.push_back(t);
+    facet_of[t] = f;
+  }
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    if (interior[i]) continue;
+    const Triangle& t = triangles[sides[i].triangle];
+    facets[facet_of[sides[i].triangle]].outline.push_back({t[sides[i].corner], t[(sides[i].corner + 1) % 3]});
+  }
+  for (Facet& facet : facets) {
+    Vec3d normal(0.0), centre(0.0);
+    double area = 0;
+    for (auto t : facet.triangles) {
+      const Vec3d n = area_vector(t);
+      const Triangle& c = triangles[t];
+      normal += n;
+      area += n.norm();
+      centre += (points[c[0]] + points[c[1]] + points[c[2]]) * (n.norm() / 3);
+    }
+    facet.normal = normal.normalized();
+    facet.point = centre / area;
+    std::sort(facet.outline.begin(), facet.outline.end());  // a fixed order
+  }
+  return facets;
+}
+
+std::vector<Segment> split_outline(const std::vector<Vec3d>& points, const std::vector<Segment>& outline,
+                                   const std::vector<Segment>& segments, double tolerance) {
   std::vector<std::uint32_t> ends;
   for (const Segment& s : segments) ends.insert(ends.end(), s.begin(), s.end());
   std::sort(ends.begin(), ends.end());
   ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-  std::vector<std::uint32_t> corners = loop;
-  std::sort(corners.begin(), corners.end());
-  std::vector<std::uint32_t> result;
+  std::vector<Segment> result;
   std::vector<std::pair<double, std::uint32_t>> on_edge;
-  for (std::size_t k = 0; k < loop.size(); ++k) {
-    const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-    result.push_back(a);
+  for (const Segment& edge : outline) {
+    const std::uint32_t a = edge[0], b = edge[1];
     const Vec3d d = points[b] - points[a];
     const double length2 = d.sqrnorm();
-    if (length2 <= tolerance * tolerance) continue;
     on_edge.clear();
     for (auto e : ends) {
-      if (std::binary_search(corners.begin(), corners.end(), e)) continue;
+      if (e == a || e == b || length2 <= tolerance * tolerance) continue;
       const Vec3d w = points[e] - points[a];
       const double s = OpenMesh::dot(w, d) / length2;
       if (s <= 0 || s >= 1 || (w - d * s).sqrnorm() > tolerance * tolerance) continue;
       on_edge.emplace_back(s, e);
     }
     std::sort(on_edge.begin(), on_edge.end());
-    for (const auto& entry : on_edge) result.push_back(entry.second);
+    std::uint32_t from = a;
+    for (const auto& entry : on_edge) {
+      result.push_back({from, entry.second});
+      from = entry.second;
+    }
+    result.push_back({from, b});
   }
   return result;
 }

@@ -29,11 +29,13 @@
 
 namespace dynrad {
 
-// A flat piece of surface: a planar polygon, or one triangle of a warped one.
+// A flat region of surface: triangles in one plane, facing one way, joined across the
+// edges they share (a polygon, or the triangles an exporter cut a face into).
 struct Facet {
-  std::vector<std::uint32_t> loop;  // corners, counter-clockwise about the normal
-  Vec3d normal;                     // unit
-  Vec3d point;                      // on its plane
+  std::vector<std::uint32_t> triangles;  // indices into the triangle list
+  std::vector<Segment> outline;          // its boundary edges, each run as its triangle runs it
+  Vec3d normal;                          // unit
+  Vec3d point;                           // on its plane
 };
 
 struct Imprints {
@@ -54,14 +56,19 @@ struct Imprints {
 
 // `triangles` triangulate the facets (triangle i lies in facet facet_of[i]). Points
 // made where edges cross planes or other edges are appended to `points`.
+// make_facets() finds the facets: triangles joined across edges that exactly two of
+// them share, running it opposite ways, in one plane (to within `tolerance`), with the
+// same `label` (material and group: a facet is triangulated again as one).
+std::vector<Facet> make_facets(const std::vector<Vec3d>& points, const std::vector<Triangle>& triangles,
+                               const std::vector<std::uint64_t>& label, double tolerance,
+                               std::vector<std::uint32_t>& facet_of);
 Imprints find_imprints(std::vector<Vec3d>& points, const std::vector<Facet>& facets,
                        const std::vector<Triangle>& triangles, const std::vector<std::uint32_t>& facet_of,
                        double tolerance);
 
-// The facet's loop with the segments' ends that lie on its edges (within `tolerance`)
-// inserted in order along them, so that the loop passes through them.
-std::vector<std::uint32_t> loop_through_segment_ends(const std::vector<Vec3d>& points,
-                                                     const std::vector<std::uint32_t>& loop,
-                                                     const std::vector<Segment>& segments, double tolerance);
+// The outline with every segment end that lies on one of its edges (within
+// `tolerance`) made a corner: the edge is split there.
+std::vector<Segment> split_outline(const std::vector<Vec3d>& points, const std::vector<Segment>& outline,
+                                   const std::vector<Segment>& segments, double tolerance);
 
 }  // namespace dynrad

@@ -5,7 +5,6 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
@@ -120,33 +119,27 @@ bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::u
   return true;
 }
 
-bool triangulate_polygon_with_segments(std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
-                                       const Vec3d& normal, const Vec3d& plane_point,
-                                       const std::vector<Segment>& segments, std::vector<Triangle>& out) {
+bool triangulate_region(std::vector<Vec3d>& points, const std::vector<Triangle>& region,
+                        const std::vector<Segment>& outline, const std::vector<Segment>& segments,
+                        const Vec3d& normal, const Vec3d& plane_point, std::vector<Triangle>& out,
+                        std::vector<std::uint32_t>& from) {
   const Frame frame(normal);
   auto to_2d = [&](const Vec3d& p) {
     const Vec3d d = p - plane_point;
     return K::Point_2(OpenMesh::dot(d, frame.u), OpenMesh::dot(d, frame.v));
   };
   SegmentCdt cdt;
-  std::vector<SegmentCdt::Vertex_handle> corners;
-  std::vector<K::Point_2> outline;
   auto insert = [&](std::uint32_t index) {
     auto vh = cdt.insert(to_2d(points[index]));
     auto& id = vh->info().index_plus_one;
     if (id == 0) id = index + 1;  // two points on one spot: the first named keeps it
     return vh;
   };
-  for (auto index : loop) {
-    corners.push_back(insert(index));
-    outline.push_back(corners.back()->point());
-  }
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    if (corners[i] != corners[(i + 1) % corners.size()]) cdt.insert_constraint(corners[i], corners[(i + 1) % corners.size()]);
-  }
-  for (const Segment& s : segments) {
-    auto a = insert(s[0]), b = insert(s[1]);
-    if (a != b) cdt.insert_constraint(a, b);
+  for (const auto* edges : {&outline, &segments}) {
+    for (const Segment& s : *edges) {
+      auto a = insert(s[0]), b = insert(s[1]);
+      if (a != b) cdt.insert_constraint(a, b);
+    }
   }
   // Points CGAL made where segments cross: lifted onto the plane.
   for (auto v : cdt.finite_vertex_handles()) {
@@ -155,27 +148,36 @@ bool triangulate_polygon_with_segments(std::vector<Vec3d>& points, const std::ve
     points.push_back(plane_point + frame.u * p.x() + frame.v * p.y());
     v->info().index_plus_one = static_cast<std::uint32_t>(points.size());
   }
-  // Inside or outside the loop, by each face's centroid: interior segments are
-  // constraints too, so counting constraints crossed would not tell.
+  // The region in the plane, for "which of its triangles holds this point".
+  std::vector<std::array<K::Point_2, 3>> old;
+  double region_area = 0;
+  for (const Triangle& t : region) {
+    old.push_back({to_2d(points[t[0]]), to_2d(points[t[1]]), to_2d(points[t[2]])});
+    region_area += std::abs(CGAL::area(old.back()[0], old.back()[1], old.back()[2]));
+  }
   std::vector<Triangle> made;
+  std::vector<std::uint32_t> holder;
   double made_area = 0;
   for (auto f : cdt.finite_face_handles()) {
     const auto centroid = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
-    if (CGAL::bounded_side_2(outline.begin(), outline.end(), centroid, K()) != CGAL::ON_BOUNDED_SIDE) continue;
-    const Triangle t{f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
-                     f->vertex(2)->info().index_plus_one - 1};
-    made.push_back(t);
+    std::uint32_t inside = UINT32_MAX;
+    for (std::uint32_t k = 0; k < old.size() && inside == UINT32_MAX; ++k) {
+      const auto& o = old[k];
+      const auto side = CGAL::orientation(o[0], o[1], o[2]) == CGAL::LEFT_TURN
+                            ? CGAL::Triangle_2<K>(o[0], o[1], o[2]).bounded_side(centroid)
+                            : CGAL::Triangle_2<K>(o[0], o[2], o[1]).bounded_side(centroid);
+      if (side != CGAL::ON_UNBOUNDED_SIDE) inside = k;
+    }
+    if (inside == UINT32_MAX) continue;
+    made.push_back({f->vertex(0)->info().index_plus_one - 1, f->vertex(1)->info().index_plus_one - 1,
+                    f->vertex(2)->info().index_plus_one - 1});
+    holder.push_back(inside);
     made_area += CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
   }
-  double loop_area = 0;
-  for (std::size_t i = 0; i < outline.size(); ++i) {
-    const auto& a = outline[i];
-    const auto& b = outline[(i + 1) % outline.size()];
-    loop_area += 0.5 * (a.x() * b.y() - b.x() * a.y());
-  }
-  if (!(std::abs(made_area - std::abs(loop_area)) <= 1e-9 * std::abs(loop_area))) return false;
+  if (!(std::abs(made_area - region_area) <= 1e-9 * region_area)) return false;
   // CGAL's faces are counter-clockwise in (u, v): they face along the normal.
   out.insert(out.end(), made.begin(), made.end());
+  from.insert(from.end(), holder.begin(), holder.end());
   return true;
 }
 
