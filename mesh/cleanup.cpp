@@ -110,7 +110,7 @@ class Cleaner {
       report_.largest_flattening_move = flat.largest_move;
     }
     triangulate();
-    drop_bad_triangles();
+    drop_bad_triangles(options_.imprint ? Duplicates::within_a_surface : Duplicates::all);
     if (options_.imprint) imprint();
     cut_non_manifold_edges();
     emit(out);
@@ -360,7 +360,9 @@ class Cleaner {
     drop_repeated_corners();
     if (options_.snap_t_junctions && tolerance_ > 0) snap_t_junctions();
     triangulate();
-    drop_bad_triangles();
+    // Copies in one plane are left to the hidden-part rules, which keep the smaller
+    // surface (a lamp on a ceiling), not the first.
+    drop_bad_triangles(Duplicates::none);
     report_ = first_pass;
 
     std::vector<std::uint32_t> triangle_facet(triangles_.size());
@@ -415,13 +417,19 @@ class Cleaner {
   }
 
   // Step 6.
-  void drop_bad_triangles() {
+  // Which copies of a triangle (same corners, same facing) are dropped: all but the
+  // first; only those of one material and group (with imprinting, copies from two
+  // surfaces are left to the hidden-part rules, which keep the smaller surface); none.
+  enum class Duplicates { all, within_a_surface, none };
+  void drop_bad_triangles(Duplicates duplicates) {
     struct Hash {
-      std::size_t operator()(const Triangle& t) const {
-        return (std::size_t(t[0]) * 73856093u) ^ (std::size_t(t[1]) * 19349663u) ^ (std::size_t(t[2]) * 83492791u);
+      std::size_t operator()(const std::pair<Triangle, std::uint64_t>& k) const {
+        const Triangle& t = k.first;
+        return (std::size_t(t[0]) * 73856093u) ^ (std::size_t(t[1]) * 19349663u) ^ (std::size_t(t[2]) * 83492791u) ^
+               std::hash<std::uint64_t>()(k.second);
       }
     };
-    std::unordered_set<Triangle, Hash> seen;
+    std::unordered_set<std::pair<Triangle, std::uint64_t>, Hash> seen;
     std::vector<Triangle> kept;
     std::vector<std::uint32_t> kept_source;
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
@@ -436,7 +444,10 @@ class Cleaner {
       // Canonical rotation (smallest index first) keeps the facing in the key.
       Triangle key = t;
       std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-      if (!seen.insert(key).second) {
+      const std::uint32_t p = origin_[source_[i]];
+      const std::uint64_t surface =
+          duplicates == Duplicates::all ? 0 : static_cast<std::uint64_t>(in_.material[p]) << 32 | in_.group[p];
+      if (duplicates != Duplicates::none && !seen.insert({key, surface}).second) {
         ++report_.duplicate_triangles;
         continue;
       }

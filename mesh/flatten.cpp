@@ -51,18 +51,33 @@ void symmetric_eigen(std::array<std::array<double, 3>, 3> a, std::array<double, 
   for (int k = 0; k < 3; ++k) w[k] = a[k][k];
 }
 
-// The point nearest to p0 among those nearest to all `planes` (least squares), where
-// planes that are almost parallel count as one direction: an eigenvalue of sum n n^T
-// below kParallel leaves p0's position along its eigenvector (two planes 2.6 degrees
-// apart would otherwise put the point on their intersection line, far away).
+// Where a corner goes: on every plane in `hard` (exactly planar polygons: they stay
+// so), and, within that, as near as it can get to the planes in `soft` (the near-planar
+// polygons being flattened), least squares. Directions in which the soft planes barely
+// pull (eigenvalue of the projected sum n n^T below kParallel: planes almost parallel
+// to the freedom left, or to each other) keep p0's position: two planes 2.6 degrees
+// apart would otherwise put the point on their intersection line, far away.
 constexpr double kParallel = 1e-3;
-Vec3d nearest_to_planes(const Vec3d& p0, const std::vector<Plane>& planes) {
+Vec3d place_corner(const Vec3d& p0, const std::vector<Plane>& hard, const std::vector<Plane>& soft) {
+  // An orthonormal basis of the hard planes' normals: the directions p may not move in.
+  std::vector<Vec3d> fixed;
+  for (const Plane& plane : hard) {
+    Vec3d n = plane.normal;
+    for (const Vec3d& f : fixed) n -= f * OpenMesh::dot(n, f);
+    if (n.norm() > 1e-3) fixed.push_back(n.normalized());
+  }
+  if (fixed.size() >= 3) return p0;
+  auto free_part = [&](Vec3d v) {
+    for (const Vec3d& f : fixed) v -= f * OpenMesh::dot(v, f);
+    return v;
+  };
   std::array<std::array<double, 3>, 3> a{};
-  Vec3d residual(0.0);  // sum n (offset - n . p0)
-  for (const Plane& plane : planes) {
+  Vec3d pull(0.0);  // sum of (the free part of n) times the distance still to go
+  for (const Plane& plane : soft) {
+    const Vec3d n = free_part(plane.normal);
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) a[r][c] += plane.normal[r] * plane.normal[c];
-    residual += plane.normal * (plane.offset - OpenMesh::dot(plane.normal, p0));
+      for (int c = 0; c < 3; ++c) a[r][c] += n[r] * n[c];
+    pull += n * (plane.offset - OpenMesh::dot(plane.normal, p0));
   }
   std::array<double, 3> w;
   std::array<std::array<double, 3>, 3> v;
@@ -71,9 +86,9 @@ Vec3d nearest_to_planes(const Vec3d& p0, const std::vector<Plane>& planes) {
   for (int k = 0; k < 3; ++k) {
     if (w[k] < kParallel) continue;
     const Vec3d e(v[0][k], v[1][k], v[2][k]);
-    move += e * (OpenMesh::dot(e, residual) / w[k]);
+    move += e * (OpenMesh::dot(e, pull) / w[k]);
   }
-  return p0 + move;
+  return p0 + free_part(move);
 }
 
 enum class Shape { planar, near_planar, warped, skipped };
@@ -82,11 +97,12 @@ struct PolygonPlane {
   Shape shape = Shape::skipped;
   Plane plane{};
   double width = 0;  // area / bounding-box diagonal
-  double size = 0;   // bounding-box diagonal
 };
 
-PolygonPlane fit_plane(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
-                       double relative_tolerance) {
+// The polygon's shape against its best-fit plane (Newell's normal through the mean of
+// its corners).
+PolygonPlane classify(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
+                      double relative_tolerance) {
   PolygonPlane result;
   if (loop.size() < 4) return result;
   const Vec3d n2 = newell_normal(points, loop);
@@ -103,12 +119,11 @@ PolygonPlane fit_plane(const std::vector<Vec3d>& points, const std::vector<std::
   centroid /= static_cast<double>(loop.size());
   result.plane.normal = n2 / twice_area;
   result.plane.offset = OpenMesh::dot(result.plane.normal, centroid);
-  result.size = box.diagonal();
-  result.width = 0.5 * twice_area / result.size;
+  result.width = 0.5 * twice_area / box.diagonal();
   double deviation = 0;
   for (auto i : loop)
     deviation = std::max(deviation, std::abs(OpenMesh::dot(result.plane.normal, points[i]) - result.plane.offset));
-  if (deviation <= 1e-12 * result.size + 1e-14 * magnitude)
+  if (deviation <= 1e-12 * box.diagonal() + 1e-14 * magnitude)
     result.shape = Shape::planar;
   else if (deviation <= relative_tolerance * result.width)
     result.shape = Shape::near_planar;
@@ -116,6 +131,35 @@ PolygonPlane fit_plane(const std::vector<Vec3d>& points, const std::vector<std::
     result.shape = Shape::warped;
   return result;
 }
+
+// The plane nearest its corners, weighted: corners that lie on exactly planar polygons
+// will hardly move, so the plane is fitted through them first.
+Plane weighted_plane(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
+                     const std::vector<double>& weight, const Vec3d& facing) {
+  double total = 0;
+  Vec3d centre(0.0);
+  for (auto i : loop) {
+    total += weight[i];
+    centre += points[i] * weight[i];
+  }
+  centre /= total;
+  std::array<std::array<double, 3>, 3> covariance{};
+  for (auto i : loop) {
+    const Vec3d d = points[i] - centre;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) covariance[r][c] += weight[i] * d[r] * d[c];
+  }
+  std::array<double, 3> w;
+  std::array<std::array<double, 3>, 3> v;
+  symmetric_eigen(covariance, w, v);
+  const int k = static_cast<int>(std::min_element(w.begin(), w.end()) - w.begin());
+  Vec3d normal(v[0][k], v[1][k], v[2][k]);
+  if (OpenMesh::dot(normal, facing) < 0) normal = -normal;
+  return {normal, OpenMesh::dot(normal, centre)};
+}
+
+// Corners on exactly planar polygons weigh this much more in the fit.
+constexpr double kPinnedWeight = 1e3;
 
 }  // namespace
 
@@ -126,23 +170,24 @@ FlattenReport flatten_polygons(std::vector<Vec3d>& points, const std::vector<std
   std::vector<std::size_t> near_planar;
   for (std::size_t p = 0; p < polygons.size(); ++p) {
     if (!keep[p]) continue;
-    fits[p] = fit_plane(points, polygons[p], options.relative_tolerance);
+    fits[p] = classify(points, polygons[p], options.relative_tolerance);
     if (fits[p].shape == Shape::near_planar) near_planar.push_back(p);
     if (fits[p].shape == Shape::warped) ++report.warped_polygons;
   }
   if (near_planar.empty()) return report;
 
-  // The polygons with a plane (planar or near-planar) around each corner of a
-  // near-planar polygon: the planes that corner must stay on.
+  // The planar and near-planar polygons around each corner of a near-planar polygon.
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> around;
   for (auto p : near_planar)
     for (auto v : polygons[p]) around.emplace(v, std::vector<std::uint32_t>{});
+  std::vector<double> weight(points.size(), 1.0);
   for (std::size_t p = 0; p < polygons.size(); ++p) {
     if (fits[p].shape != Shape::planar && fits[p].shape != Shape::near_planar) continue;
     for (auto v : polygons[p]) {
       auto it = around.find(v);
-      if (it != around.end() && (it->second.empty() || it->second.back() != p))
-        it->second.push_back(static_cast<std::uint32_t>(p));
+      if (it == around.end()) continue;
+      if (it->second.empty() || it->second.back() != p) it->second.push_back(static_cast<std::uint32_t>(p));
+      if (fits[p].shape == Shape::planar) weight[v] = kPinnedWeight;
     }
   }
   std::vector<std::uint32_t> corners;
@@ -151,33 +196,32 @@ FlattenReport flatten_polygons(std::vector<Vec3d>& points, const std::vector<std
   std::sort(corners.begin(), corners.end());  // the same result whatever the hash order
 
   const std::vector<Vec3d> original = points;
-  // A few rounds: each refits the planes to the moved corners. Corners where three or
-  // fewer planes meet are exact after the first.
-  std::vector<Plane> planes;
-  for (int round = 0; round < 3; ++round) {
+  std::vector<char> flat(polygons.size(), 0);
+  std::vector<Plane> hard, soft;
+  // Rounds of: fit each polygon's plane to its corners, move the corners onto the
+  // planes. Corners where three or fewer planes meet are exact after the first.
+  for (int round = 0; round < 5; ++round) {
+    for (auto p : near_planar) fits[p].plane = weighted_plane(points, polygons[p], weight, fits[p].plane.normal);
     for (auto v : corners) {
-      planes.clear();
+      hard.clear();
+      soft.clear();
       double allowed = std::numeric_limits<double>::infinity();
       for (auto p : around[v]) {
-        planes.push_back(fits[p].plane);
+        (fits[p].shape == Shape::planar ? hard : soft).push_back(fits[p].plane);
         if (fits[p].shape == Shape::near_planar)
           allowed = std::min(allowed, options.relative_tolerance * fits[p].width);
       }
-      const Vec3d moved = nearest_to_planes(points[v], planes);
+      const Vec3d moved = place_corner(points[v], hard, soft);
       if ((moved - original[v]).norm() <= allowed) points[v] = moved;
     }
     bool all_flat = true;
     for (auto p : near_planar) {
-      const PolygonPlane refit = fit_plane(points, polygons[p], options.relative_tolerance);
-      if (refit.shape != Shape::planar) {
-        all_flat = false;
-        fits[p].plane = refit.plane;
-      }
+      flat[p] = classify(points, polygons[p], options.relative_tolerance).shape == Shape::planar;
+      all_flat = all_flat && flat[p];
     }
     if (all_flat) break;
   }
-  for (auto p : near_planar)
-    if (fit_plane(points, polygons[p], options.relative_tolerance).shape == Shape::planar) ++report.flattened_polygons;
+  for (auto p : near_planar) report.flattened_polygons += flat[p];
   for (auto v : corners) report.largest_move = std::max(report.largest_move, (points[v] - original[v]).norm());
   return report;
 }

@@ -1,5 +1,5 @@
 // Hidden parts: pieces, rays from their fronts (CGAL's AABB tree), and the rules for
-// pieces in one plane (see hidden.h).
+// surfaces in one plane (see hidden.h).
 #include "mesh/hidden.h"
 
 #include <CGAL/AABB_traits.h>
@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
+#include <set>
 
 namespace dynrad {
 namespace {
@@ -34,13 +34,17 @@ struct Disjoint {
   }
 };
 
-// One piece: its triangles and a point well inside it, on its front.
+enum class State : std::uint8_t { visible, enclosed, face_to_face, covered };
+bool closed(State s) { return s == State::enclosed || s == State::face_to_face; }
+
+// One piece: a connected part of a facet between imprinted lines, and a point well
+// inside it, on its front.
 struct Piece {
   std::vector<std::uint32_t> triangles;
   Vec3d point, normal;  // the incentre of its fattest triangle
   double inradius = -1;
-  bool tested = false;  // it holds a triangle of a touched facet
-  enum class State { visible, enclosed, face_to_face, covered } state = State::visible;
+  bool tested = false;  // its facet was touched by imprinting
+  State state = State::visible;
 };
 
 // Directions cosine-distributed about +z: even in the projected disc's area (a spiral
@@ -56,66 +60,23 @@ std::vector<Vec3d> cosine_directions(int count) {
   return directions;
 }
 
-bool inside_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& normal,
-                     double tolerance) {
-  const Vec3d corners[3] = {a, b, c};
-  for (int k = 0; k < 3; ++k) {
-    const Vec3d edge = corners[(k + 1) % 3] - corners[k];
-    const Vec3d inward = OpenMesh::cross(normal, edge).normalized();
-    if (OpenMesh::dot(p - corners[k], inward) < -tolerance) return false;
-  }
-  return true;
-}
-
 class HiddenFinder {
  public:
   HiddenFinder(const HiddenInput& in, const HiddenOptions& options, HiddenReport& report)
-      : in_(in), options_(options), report_(report) {}
+      : in_(in), options_(options), report_(report), state_(in.triangles.size(), State::visible) {}
 
   std::vector<char> run() {
     make_pieces();
     build_tree();
-    find_links();
-    const std::vector<Vec3d> directions = cosine_directions(options_.rays);
-    // A ray that reaches the front of a hidden piece has stayed in the space that piece
-    // faces, which is closed: it counts as closed too. So a piece is tested again when
-    // one whose front it saw becomes hidden, until nothing changes.
-    std::vector<std::vector<std::uint32_t>> seen(pieces_.size());
-    std::vector<std::uint32_t> queue;
-    for (std::uint32_t p = 0; p < pieces_.size(); ++p)
-      if (pieces_[p].tested) queue.push_back(p);
-    report_.pieces_tested = queue.size();
-    std::vector<char> changed(pieces_.size(), 0);
-    while (!queue.empty()) {
-      std::vector<std::uint32_t> now_hidden;
-      for (auto p : queue) {
-        if (pieces_[p].state != Piece::State::visible) continue;
-        seen[p].clear();
-        if (enclosed(pieces_[p], directions, seen[p])) {
-          pieces_[p].state = Piece::State::enclosed;
-          ++report_.enclosed_pieces;
-          now_hidden.push_back(p);
-        }
-      }
-      const auto contacts = hide_face_to_face();
-      now_hidden.insert(now_hidden.end(), contacts.begin(), contacts.end());
-      for (auto p : now_hidden) changed[p] = 1;
-      queue.clear();
-      for (std::uint32_t p = 0; p < pieces_.size(); ++p) {
-        if (!pieces_[p].tested || pieces_[p].state != Piece::State::visible) continue;
-        if (std::any_of(seen[p].begin(), seen[p].end(), [&](std::uint32_t q) { return changed[q]; }))
-          queue.push_back(p);
-      }
-      for (auto p : now_hidden) changed[p] = 0;
-    }
-    hide_covered();
+    find_enclosed();
+    for (const Piece& piece : pieces_)
+      for (auto t : piece.triangles) state_[t] = piece.state;
+    apply_plane_rules();
     std::vector<char> hidden(in_.triangles.size(), 0);
-    for (const Piece& piece : pieces_) {
-      if (piece.state == Piece::State::visible) continue;
-      for (auto t : piece.triangles) {
-        hidden[t] = 1;
-        report_.hidden_area += area(t);
-      }
+    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) {
+      if (state_[t] == State::visible) continue;
+      hidden[t] = 1;
+      report_.hidden_area += area(t);
     }
     return hidden;
   }
@@ -126,14 +87,19 @@ class HiddenFinder {
     return OpenMesh::cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0)) * 0.5;
   }
   double area(std::uint32_t t) const { return area_vector(t).norm(); }
+  Vec3d incentre(std::uint32_t t, double& inradius) const {
+    const Vec3d a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
+    const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
+    inradius = 2 * area(t) / (la + lb + lc);
+    return (a * la + b * lb + c * lc) / (la + lb + lc);
+  }
 
-  // Pieces: triangles joined across every edge that exactly two triangles use. An
-  // imprinted line is an edge of the surface that meets it too (three or more users),
-  // so pieces end there; elsewhere a piece runs on across facets, around creases.
+  // Pieces: a facet's triangles joined across the edges that only two triangles use. An
+  // imprinted line is an edge of the surface that meets the facet too (three or more
+  // users), so pieces end there.
   void make_pieces() {
     const auto& tris = in_.triangles;
-    // (edge, triangle) for every triangle side, sorted by edge: the users of an edge are
-    // a run.
+    // (edge, triangle) for every triangle side, sorted by edge: an edge's users are a run.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> sides;
     sides.reserve(tris.size() * 3);
     for (std::uint32_t t = 0; t < tris.size(); ++t)
@@ -146,21 +112,22 @@ class HiddenFinder {
     for (std::size_t i = 0; i < sides.size();) {
       std::size_t j = i;
       while (j < sides.size() && sides[j].first == sides[i].first) ++j;
-      if (j - i == 2) join.unite(sides[i].second, sides[i + 1].second);
+      const std::uint32_t t0 = sides[i].second;
+      if (j - i == 2 && in_.facet_of[t0] == in_.facet_of[sides[i + 1].second]) join.unite(t0, sides[i + 1].second);
       i = j;
     }
     std::vector<std::uint32_t> piece_of_root(tris.size(), UINT32_MAX);
     piece_of_.assign(tris.size(), UINT32_MAX);
     for (std::uint32_t t = 0; t < tris.size(); ++t) {
-      std::uint32_t& piece_id = piece_of_root[join.find(t)];
-      if (piece_id == UINT32_MAX) {
-        piece_id = static_cast<std::uint32_t>(pieces_.size());
+      std::uint32_t& id = piece_of_root[join.find(t)];
+      if (id == UINT32_MAX) {
+        id = static_cast<std::uint32_t>(pieces_.size());
         pieces_.emplace_back();
+        pieces_.back().tested = in_.touched[in_.facet_of[t]];
       }
-      Piece& piece = pieces_[piece_id];
+      Piece& piece = pieces_[id];
       piece.triangles.push_back(t);
-      piece.tested = piece.tested || in_.touched[in_.facet_of[t]];
-      piece_of_[t] = piece_id;
+      piece_of_[t] = id;
       double inradius;
       const Vec3d centre = incentre(t, inradius);
       if (inradius > piece.inradius) {
@@ -169,13 +136,6 @@ class HiddenFinder {
         piece.normal = area_vector(t).normalized();
       }
     }
-  }
-
-  Vec3d incentre(std::uint32_t t, double& inradius) const {
-    const Vec3d a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
-    const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
-    inradius = 2 * area(t) / (la + lb + lc);
-    return (a * la + b * lb + c * lc) / (la + lb + lc);
   }
 
   void build_tree() {
@@ -189,6 +149,39 @@ class HiddenFinder {
     }
     tree_.insert(triangles3_.begin(), triangles3_.end());
     tree_.build();
+  }
+
+  // Rule 1. A ray that reaches the front of a hidden piece has stayed in the space that
+  // piece faces, which is closed: it counts as closed too. So a piece is tested again
+  // when one whose front it saw becomes hidden, until nothing changes.
+  void find_enclosed() {
+    const std::vector<Vec3d> directions = cosine_directions(options_.rays);
+    std::vector<std::vector<std::uint32_t>> seen(pieces_.size());
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t p = 0; p < pieces_.size(); ++p)
+      if (pieces_[p].tested) queue.push_back(p);
+    report_.pieces_tested = queue.size();
+    std::vector<char> changed(pieces_.size(), 0);
+    while (!queue.empty()) {
+      std::vector<std::uint32_t> now_hidden;
+      for (auto p : queue) {
+        if (pieces_[p].state != State::visible) continue;
+        seen[p].clear();
+        if (enclosed(pieces_[p], directions, seen[p])) {
+          pieces_[p].state = State::enclosed;
+          ++report_.enclosed_pieces;
+          now_hidden.push_back(p);
+        }
+      }
+      for (auto p : now_hidden) changed[p] = 1;
+      queue.clear();
+      for (std::uint32_t p = 0; p < pieces_.size(); ++p) {
+        if (!pieces_[p].tested || pieces_[p].state != State::visible) continue;
+        if (std::any_of(seen[p].begin(), seen[p].end(), [&](std::uint32_t q) { return changed[q]; }))
+          queue.push_back(p);
+      }
+      for (auto p : now_hidden) changed[p] = 0;
+    }
   }
 
   // `seen` gets the visible pieces whose fronts the rays hit.
@@ -210,8 +203,7 @@ class HiddenFinder {
         const auto t = static_cast<std::uint32_t>(*hit - triangles3_.begin());
         if (OpenMesh::dot(area_vector(t), d) > 0) continue;  // a back
         const std::uint32_t h = piece_of_[t];
-        const auto state = pieces_[h].state;
-        if (state == Piece::State::enclosed || state == Piece::State::face_to_face) continue;
+        if (closed(pieces_[h].state)) continue;
         if (std::find(seen.begin(), seen.end(), h) == seen.end()) seen.push_back(h);
       }
       if (++open > open_allowed) return false;
@@ -219,89 +211,81 @@ class HiddenFinder {
     return true;
   }
 
-  // The piece of facet `f` under the point `p` (in f's plane), or UINT32_MAX.
-  std::uint32_t piece_under(std::uint32_t f, const Vec3d& p, const Vec3d& normal) const {
-    auto it = facet_triangles_.find(f);
-    if (it == facet_triangles_.end()) return UINT32_MAX;
-    for (auto t : it->second) {
-      const Vec3d a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
-      // `normal` is the facet's facing or its opposite: test in a fixed winding.
-      const bool flip = OpenMesh::dot(area_vector(t), normal) < 0;
-      if (inside_triangle(p, a, flip ? c : b, flip ? b : c, normal, in_.tolerance)) return piece_of_[t];
-    }
-    return UINT32_MAX;
-  }
-
-  // Pieces that overlap in one plane, found from a point of one inside the other's facet.
-  void find_links() {
-    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) facet_triangles_[in_.facet_of[t]].push_back(t);
-    for (const auto& overlap : in_.overlaps) {
-      for (int side = 0; side < 2; ++side) {
-        const std::uint32_t f = side ? overlap.b : overlap.a, other = side ? overlap.a : overlap.b;
-        // The fattest triangle of each piece within facet f gives the point.
-        std::map<std::uint32_t, std::pair<double, std::uint32_t>> fattest;
-        for (auto t : facet_triangles_[f]) {
-          double inradius;
-          incentre(t, inradius);
-          auto [it, fresh] = fattest.try_emplace(piece_of_[t], inradius, t);
-          if (!fresh && inradius > it->second.first) it->second = {inradius, t};
-        }
-        for (const auto& [p, best] : fattest) {
-          double inradius;
-          const Vec3d point = incentre(best.second, inradius);
-          const std::uint32_t q = piece_under(other, point, area_vector(best.second));
-          if (q != UINT32_MAX && q != p) links_.push_back({p, q, f, other, overlap.same_facing});
-        }
+  // True when triangle t lies over triangle u (both in one plane): its centroid, or a
+  // point halfway from it to one of t's corners, is inside u clear of u's edges by the
+  // tolerance. (The centroid alone can lie on u's edge: a square's two triangulations.)
+  bool over(std::uint32_t t, std::uint32_t u) const {
+    const Vec3d c = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0;
+    const Vec3d n = area_vector(u);
+    auto inside = [&](const Vec3d& p) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d edge = corner(u, (k + 1) % 3) - corner(u, k);
+        const Vec3d inward = OpenMesh::cross(n, edge).normalized();
+        if (OpenMesh::dot(p - corner(u, k), inward) <= in_.tolerance) return false;
       }
-    }
+      return true;
+    };
+    if (inside(c)) return true;
+    for (int k = 0; k < 3; ++k)
+      if (inside((c + corner(t, k)) * 0.5)) return true;
+    return false;
   }
 
-  // Face to face: hidden spreads across such contacts. Returns the pieces it hid.
-  std::vector<std::uint32_t> hide_face_to_face() {
-    std::vector<std::uint32_t> hid;
-    for (bool changed = true; changed;) {  // a chain of contacts is short: repeat
+  // Rules 2 and 3, triangle by triangle where two facets overlap in one plane: what
+  // imprinting cut along each other's outlines lies either inside the other facet or
+  // outside it.
+  void apply_plane_rules() {
+    std::vector<std::vector<std::uint32_t>> facet_triangles;
+    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) {
+      const std::uint32_t f = in_.facet_of[t];
+      if (f >= facet_triangles.size()) facet_triangles.resize(f + 1);
+      facet_triangles[f].push_back(t);
+    }
+    struct Pair {
+      std::uint32_t t, u;  // triangles, one over the other
+      std::uint32_t ft, fu;
+      bool same_facing;
+    };
+    std::vector<Pair> pairs;
+    for (const auto& overlap : in_.overlaps) {
+      if (std::max(overlap.a, overlap.b) >= facet_triangles.size()) continue;
+      for (auto t : facet_triangles[overlap.a])
+        for (auto u : facet_triangles[overlap.b])
+          if (over(t, u) || over(u, t))
+            pairs.push_back({t, u, overlap.a, overlap.b, overlap.same_facing});
+    }
+    std::set<std::uint32_t> face_to_face, covered;
+    // Face to face: hidden spreads across such contacts (a chain is short: repeat).
+    for (bool changed = true; changed;) {
       changed = false;
-      for (const Link& link : links_) {
-        if (link.same_facing) continue;
-        const bool p_visible = pieces_[link.p].state == Piece::State::visible;
-        if (p_visible == (pieces_[link.q].state == Piece::State::visible)) continue;
-        const std::uint32_t now = p_visible ? link.p : link.q;
-        pieces_[now].state = Piece::State::face_to_face;
-        ++report_.face_to_face_pieces;
-        hid.push_back(now);
+      for (const Pair& pair : pairs) {
+        if (pair.same_facing || closed(state_[pair.t]) == closed(state_[pair.u])) continue;
+        const std::uint32_t now = closed(state_[pair.t]) ? pair.u : pair.t;
+        state_[now] = State::face_to_face;
+        face_to_face.insert(piece_of_[now]);
         changed = true;
       }
     }
-    return hid;
-  }
-
-  // Covered: of two visible pieces facing the same way, the smaller facet's stays (the
-  // later one when they are equal).
-  void hide_covered() {
-    for (const Link& link : links_) {
-      if (!link.same_facing) continue;
-      Piece& p = pieces_[link.p];
-      Piece& q = pieces_[link.q];
-      if (p.state != Piece::State::visible || q.state != Piece::State::visible) continue;
-      const double ap = in_.facet_area[link.fp], aq = in_.facet_area[link.fq];
-      const bool keep_p = ap < aq || (ap == aq && link.fp > link.fq);
-      (keep_p ? q : p).state = Piece::State::covered;
-      ++report_.covered_pieces;
+    // Covered: of two visible triangles facing the same way, the smaller facet's stays
+    // (the later one when they are equal).
+    for (const Pair& pair : pairs) {
+      if (!pair.same_facing || state_[pair.t] != State::visible || state_[pair.u] != State::visible) continue;
+      const double at = in_.facet_area[pair.ft], au = in_.facet_area[pair.fu];
+      const bool keep_t = at < au || (at == au && pair.ft > pair.fu);
+      const std::uint32_t gone = keep_t ? pair.u : pair.t;
+      state_[gone] = State::covered;
+      covered.insert(piece_of_[gone]);
     }
+    report_.face_to_face_pieces = face_to_face.size();
+    report_.covered_pieces = covered.size();
   }
 
-  struct Link {
-    std::uint32_t p, q;    // pieces
-    std::uint32_t fp, fq;  // the facets where they meet
-    bool same_facing;
-  };
-  std::vector<Link> links_;
   const HiddenInput& in_;
   const HiddenOptions& options_;
   HiddenReport& report_;
   std::vector<Piece> pieces_;
   std::vector<std::uint32_t> piece_of_;  // per triangle
-  std::map<std::uint32_t, std::vector<std::uint32_t>> facet_triangles_;
+  std::vector<State> state_;             // per triangle
   TriangleList triangles3_;
   Tree tree_;
 };

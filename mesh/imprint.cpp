@@ -94,23 +94,8 @@ class Imprinter {
         original_points_(static_cast<std::uint32_t>(points.size())) {
     offset_.resize(facets.size());
     for (std::size_t f = 0; f < facets.size(); ++f) offset_[f] = OpenMesh::dot(facets[f].normal, facets[f].point);
-    // Who runs each edge which way, to tell an outline edge that bounds what lies in
-    // its plane from one that another facet in the plane, facing the same way, runs
-    // the other way (a triangle cleanup dropped as a copy of that facet's).
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> runs;  // (from, to) -> facets
-    for (std::uint32_t t = 0; t < triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) runs[{triangles[t][k], triangles[t][(k + 1) % 3]}].push_back(facet_of[t]);
-    for (std::uint32_t f = 0; f < facets.size(); ++f) {
-      for (const Segment& e : facets[f].outline) {
-        bool covered_beyond = false;
-        auto it = runs.find({e[1], e[0]});
-        if (it != runs.end())
-          for (auto g : it->second)
-            covered_beyond = covered_beyond || (OpenMesh::dot(facets[g].normal, facets[f].normal) > 1 - 1e-9 &&
-                                                std::abs(offset_[g] - offset_[f]) <= tolerance_);
-        if (!covered_beyond) outline_edges_.insert(edge_key(f, e[0], e[1]));
-      }
-    }
+    for (std::uint32_t f = 0; f < facets.size(); ++f)
+      for (const Segment& e : facets[f].outline) outline_edges_.insert(edge_key(f, e[0], e[1]));
   }
 
   Imprints run() {
@@ -205,7 +190,13 @@ class Imprinter {
     int shared = 0;
     for (auto x : a)
       for (auto y : b) shared += x == y;
-    if (shared >= 2) return;  // neighbours across an edge: they meet along it
+    if (shared == 3) {  // the same triangle twice, from two surfaces: they overlap wholly
+      const bool same_facing = OpenMesh::dot(facets_[f1].normal, facets_[f2].normal) > 0;
+      overlaps_.insert({std::min(f1, f2), std::max(f1, f2), same_facing});
+      result.touched[f1] = result.touched[f2] = 1;
+      return;
+    }
+    if (shared == 2) return;  // neighbours across an edge: they meet along it
     std::array<double, 3> da, db;  // a's corners from f2's plane, b's from f1's
     bool a_on = true, b_on = true;
     for (int k = 0; k < 3; ++k) {
