@@ -299,6 +299,7 @@ class Cleaner {
     }
     std::vector<std::uint32_t> facet_of;
     const std::vector<Facet> facets = make_facets(points_, triangles_, label, tolerance_, facet_of);
+    const std::vector<ClosedSurface> solids = closed_surfaces();
     Imprints found = find_imprints(points_, facets, triangles_, facet_of, tolerance_);
 
     // Facets with lines on them, triangulated again; each new triangle keeps the input
@@ -371,9 +372,10 @@ class Cleaner {
     for (std::size_t i = 0; i < triangles_.size(); ++i) facet_area[triangle_facet[i]] += triangle_area(triangles_[i]);
     HiddenReport hidden;
     const std::vector<char> is_hidden = find_hidden_triangles(
-        {points_, triangles_, triangle_facet, found.touched, found.overlaps, facet_area, tolerance_},
+        {solids, points_, triangles_, triangle_facet, found.touched, found.overlaps, facet_area, tolerance_},
         options_.hidden, hidden);
-    report_.hidden_pieces = hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
+    report_.hidden_pieces =
+        hidden.inside_solid_pieces + hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
     std::size_t kept = 0;
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
       if (is_hidden[i]) continue;
@@ -394,6 +396,37 @@ class Cleaner {
     double sum = 0;
     for (const Triangle& t : triangles_) sum += triangle_area(t);
     return sum;
+  }
+
+  // The closed surfaces among the triangles: sets joined by shared edges in which every
+  // edge is run as often one way as the other (a solid, or two solids that share an
+  // edge: winding numbers add).
+  std::vector<ClosedSurface> closed_surfaces() const {
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> users;  // undirected edge -> triangles
+    std::unordered_map<std::uint64_t, int> balance;                         // directed count, a < b positive
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+        const std::uint64_t key = std::min(a, b) << 32 | std::max(a, b);
+        users[key].push_back(t);
+        balance[key] += a < b ? 1 : -1;
+      }
+    UnionFind sets(triangles_.size());
+    for (const auto& [key, list] : users)
+      for (std::size_t i = 1; i < list.size(); ++i) sets.unite(list[0], list[i]);
+    std::vector<char> open(triangles_.size(), 0);  // per set root
+    for (const auto& [key, list] : users)
+      if (balance.at(key) != 0) open[sets.find(list[0])] = 1;
+    std::unordered_map<std::size_t, std::size_t> index;
+    std::vector<ClosedSurface> surfaces;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+      const std::size_t root = sets.find(t);
+      if (open[root]) continue;
+      auto [it, fresh] = index.try_emplace(root, surfaces.size());
+      if (fresh) surfaces.emplace_back();
+      surfaces[it->second].push_back({points_[triangles_[t][0]], points_[triangles_[t][1]], points_[triangles_[t][2]]});
+    }
+    return surfaces;
   }
 
   // A segment's end within the tolerance of a corner of the outline is that corner.

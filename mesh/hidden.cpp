@@ -68,6 +68,7 @@ class HiddenFinder {
   std::vector<char> run() {
     make_pieces();
     build_tree();
+    find_inside_solids();
     find_enclosed();
     for (const Piece& piece : pieces_)
       for (auto t : piece.triangles) state_[t] = piece.state;
@@ -151,6 +152,45 @@ class HiddenFinder {
     tree_.build();
   }
 
+  // The point in front of a piece: off its plane by more than surfaces in it may
+  // stray, well within the piece.
+  Vec3d front_point(const Piece& piece) const {
+    return piece.point + piece.normal * std::max(10 * in_.tolerance, 0.01 * piece.inradius);
+  }
+
+  // Rule 1, by winding number: the solid angle a closed surface spans seen from the
+  // point, over 4 pi, is 1 inside it (facing out), 0 outside.
+  void find_inside_solids() {
+    std::vector<Bounds> boxes(in_.solids.size());
+    for (std::size_t s = 0; s < in_.solids.size(); ++s)
+      for (const auto& t : in_.solids[s])
+        for (const Vec3d& p : t) boxes[s].extend(p);
+    for (Piece& piece : pieces_) {
+      if (!piece.tested) continue;
+      const Vec3d x = front_point(piece);
+      for (std::size_t s = 0; s < in_.solids.size() && piece.state == State::visible; ++s) {
+        const Bounds& box = boxes[s];
+        if (x[0] < box.lo[0] || x[1] < box.lo[1] || x[2] < box.lo[2] || x[0] > box.hi[0] || x[1] > box.hi[1] ||
+            x[2] > box.hi[2])
+          continue;
+        double solid_angle = 0;
+        for (const auto& t : in_.solids[s]) {
+          // Van Oosterom and Strackee's formula for a triangle's solid angle.
+          const Vec3d a = t[0] - x, b = t[1] - x, c = t[2] - x;
+          const double la = a.norm(), lb = b.norm(), lc = c.norm();
+          const double numerator = OpenMesh::dot(a, OpenMesh::cross(b, c));
+          const double denominator =
+              la * lb * lc + OpenMesh::dot(a, b) * lc + OpenMesh::dot(b, c) * la + OpenMesh::dot(c, a) * lb;
+          solid_angle += 2 * std::atan2(numerator, denominator);
+        }
+        if (solid_angle / (4 * M_PI) > 0.5) {
+          piece.state = State::enclosed;
+          ++report_.inside_solid_pieces;
+        }
+      }
+    }
+  }
+
   // Rule 1. A ray that reaches the front of a hidden piece has stayed in the space that
   // piece faces, which is closed: it counts as closed too. So a piece is tested again
   // when one whose front it saw becomes hidden, until nothing changes.
@@ -189,9 +229,7 @@ class HiddenFinder {
     const Vec3d& n = piece.normal;
     const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
     const Vec3d u = OpenMesh::cross(helper, n).normalized(), v = OpenMesh::cross(n, u);
-    // Off the piece's plane by more than surfaces in it may stray, within the piece.
-    const double lift = std::max(10 * in_.tolerance, 0.01 * piece.inradius);
-    const Vec3d origin = piece.point + n * lift;
+    const Vec3d origin = front_point(piece);
     const K::Point_3 source(origin[0], origin[1], origin[2]);
     const int rays = static_cast<int>(directions.size());
     const int open_allowed = rays - static_cast<int>(std::ceil(options_.enclosed_fraction * rays));

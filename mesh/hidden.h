@@ -3,10 +3,12 @@
 // corners would be interpolated into the visible surface beside them.
 //
 // A piece is a connected part of one facet between imprinted lines. It is hidden when
-//   1. enclosed: at least `enclosed_fraction` of rays leaving its front (cosine-
-//      distributed, a fixed set) first hit the back of a surface. That is the floor
-//      under a wall or a closed cupboard, a wall's part inside a slab, the floor under a
-//      box without a bottom; an open box's floor sees out through its opening;
+//   1. enclosed: the point just in front of it is inside a closed solid of the model
+//      as given (a winding number of one: the floor under a wall or a closed cupboard,
+//      a wall's part inside a slab), or at least `enclosed_fraction` of the rays
+//      leaving its front (cosine-distributed, a fixed set) first hit the back of a
+//      surface or the front of a piece already found enclosed (the floor under a box
+//      without a bottom). An open box's floor sees out through its opening;
 //   2. face to face with a hidden piece: two pieces in one plane, facing each other
 //      (a cupboard's bottom on a floor): if one is hidden, so is the other. Two sheets
 //      back to back where neither is hidden (a wall drawn as two faces with no
@@ -30,13 +32,18 @@ struct HiddenOptions {
 
 struct HiddenReport {
   std::size_t pieces_tested = 0;
-  std::size_t enclosed_pieces = 0;      // rule 1
+  std::size_t inside_solid_pieces = 0;  // rule 1, by winding number
+  std::size_t enclosed_pieces = 0;      // rule 1, by rays
   std::size_t face_to_face_pieces = 0;  // rule 2
   std::size_t covered_pieces = 0;       // rule 3
   double hidden_area = 0;               // model units squared
 };
 
+// A closed surface of the model as given: its triangles, each as three corners.
+using ClosedSurface = std::vector<std::array<Vec3d, 3>>;
+
 struct HiddenInput {
+  const std::vector<ClosedSurface>& solids;  // closed surfaces facing out (others count nothing)
   const std::vector<Vec3d>& points;
   const std::vector<Triangle>& triangles;
   const std::vector<std::uint32_t>& facet_of;    // per triangle
