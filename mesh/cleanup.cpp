@@ -299,8 +299,9 @@ class Cleaner {
     }
     std::vector<std::uint32_t> facet_of;
     const std::vector<Facet> facets = make_facets(points_, triangles_, label, tolerance_, facet_of);
-    const std::vector<ClosedSurface> solids = closed_surfaces();
     Imprints found = find_imprints(points_, facets, triangles_, facet_of, tolerance_);
+    if (std::find(found.touched.begin(), found.touched.end(), 1) == found.touched.end()) return;  // nothing meets
+    const std::vector<ClosedSurface> solids = closed_surfaces();  // of the model as given
 
     // Facets with lines on them, triangulated again; each new triangle keeps the input
     // polygon of the old triangle that holds it.

@@ -101,16 +101,31 @@ class Imprinter {
   Imprints run() {
     Imprints result;
     result.touched.assign(facets_.size(), 0);
-    std::vector<Box> boxes;
-    boxes.reserve(triangles_.size());
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-      Bounds b;
-      for (auto v : triangles_[t]) b.extend(points_[v]);
+    // Facets whose boxes meet another's first (a model of one flat floor has none), then
+    // the triangles of those.
+    auto box_of = [&](const Bounds& b, std::uint32_t id) {
       double lo[3] = {b.lo[0] - tolerance_, b.lo[1] - tolerance_, b.lo[2] - tolerance_};
       double hi[3] = {b.hi[0] + tolerance_, b.hi[1] + tolerance_, b.hi[2] + tolerance_};
-      boxes.emplace_back(lo, hi, t);
+      return Box(lo, hi, id);
+    };
+    std::vector<Bounds> facet_bounds(facets_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+      for (auto v : triangles_[t]) facet_bounds[facet_of_[t]].extend(points_[v]);
+    std::vector<Box> boxes;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) boxes.push_back(box_of(facet_bounds[f], f));
+    std::vector<char> near_another(facets_.size(), 0);
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      near_another[x.info()] = near_another[y.info()] = 1;
+    });
+    boxes.clear();
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+      if (!near_another[facet_of_[t]]) continue;
+      Bounds b;
+      for (auto v : triangles_[t]) b.extend(points_[v]);
+      boxes.push_back(box_of(b, t));
     }
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      if (facet_of_[x.info()] == facet_of_[y.info()]) return;
       ++result.candidate_pairs;
       intersect(x.info(), y.info(), result);
     });

@@ -118,8 +118,27 @@ def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "storey.obj")
     obj = Obj()
     ho, hi = OUTER / 2, INNER / 2
-    window = lambda s: (s - WIN_W / 2, s + WIN_W / 2, SILL, SILL + WIN_H)
+    windows = []  # the floor plan's window openings, as rectangles (for the layout)
+
+    def window(s):
+        return (s - WIN_W / 2, s + WIN_W / 2, SILL, SILL + WIN_H)
+
+    def windows_x(y, centres):  # windows in an outer wall along x; s = x + ho
+        for c in centres:
+            windows.append([c - ho - WIN_W / 2, y - ho, c - ho + WIN_W / 2, y + ho])
+
+    def windows_y(x, centres):
+        for c in centres:
+            windows.append([x - ho, c - ho - WIN_W / 2, x + ho, c - ho + WIN_W / 2])
+
     door = lambda s: (s - DOOR_W / 2, s + DOOR_W / 2, 0.0, DOOR_H)
+    doors = []  # the floor plan's door openings, as rectangles
+
+    def door_x(x, y, thickness):  # a door in a wall along x centred at x, for the layout
+        doors.append([x - DOOR_W / 2, y - thickness / 2, x + DOOR_W / 2, y + thickness / 2])
+
+    def door_y(x, y, thickness):
+        doors.append([x - thickness / 2, y - DOOR_W / 2, x + thickness / 2, y + DOOR_W / 2])
 
     obj.element("IfcSlab_floor")
     cuboid_solid(obj, (-ho, -ho, -SLAB), (SX + ho, SY + ho, 0), "floor")
@@ -131,21 +150,30 @@ def main():
     obj.element("IfcWall_south")
     wall_solid(obj, (-ho, 0), 'x', SX + OUTER, OUTER, zb, zt,
                [window(ho + 2.5), window(ho + 9.0), (ho + 4.6, ho + 5.6, 0.0, DOOR_H)])
+    windows_x(0, [ho + 2.5, ho + 9.0])
     obj.element("IfcWall_north")
     wall_solid(obj, (-ho, SY), 'x', SX + OUTER, OUTER, zb, zt, [window(ho + 2.5), window(ho + 9.5)])
+    windows_x(SY, [ho + 2.5, ho + 9.5])
     obj.element("IfcWall_west")
     wall_solid(obj, (0, -ho), 'y', SY + OUTER, OUTER, zb, zt, [window(ho + 2.5), window(ho + 7.0)])
+    windows_y(0, [ho + 2.5, ho + 7.0])
     obj.element("IfcWall_east")
     wall_solid(obj, (SX, -ho), 'y', SY + OUTER, OUTER, zb, zt, [window(ho + 2.5), window(ho + 7.0)])
+    windows_y(SX, [ho + 2.5, ho + 7.0])
     # Inner walls: on the floor slab, under the ceiling slab, into the outer walls to
     # their axes (so their ends are inside the outer walls).
     obj.element("IfcWall_inner_x")
     wall_solid(obj, (0, YA), 'x', SX, INNER, 0, HEIGHT, [door(2.5), door(9.0)])
+    door_x(2.5, YA, INNER)
+    door_x(9.0, YA, INNER)
     obj.element("IfcWall_inner_y")
     wall_solid(obj, (XA, 0), 'y', YA, INNER, 0, HEIGHT, [door(2.5)])
+    door_y(XA, 2.5, INNER)
 
     obj.element("IfcWall_inner_y2")
     wall_solid(obj, (SX / 2, YA), 'y', SY - YA, INNER, 0, HEIGHT, [door(1.2)])
+    door_y(SX / 2, YA + 1.2, INNER)
+    doors.append([4.6, -ho, 5.6, ho])  # the entrance
 
     # Rooms: the inner faces of their walls.
     rooms = {
@@ -215,6 +243,8 @@ def main():
         "ceiling_height": HEIGHT,
         "rooms": [{"name": n, "rectangle": list(r)} for n, r in rooms.items()],
         "furniture": furniture,
+        "doors": doors,
+        "windows": windows,
         "lamps": lamps,
     }
     with open(base + "_layout.json", "w") as f:
