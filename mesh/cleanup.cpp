@@ -316,8 +316,14 @@ class Cleaner {
       std::vector<Triangle> region;
       for (auto t : facets[f].triangles) region.push_back(triangles_[t]);
       std::vector<std::uint32_t> holder;
-      if (!triangulate_region(points_, region, outline, segments, facets[f].normal, facets[f].point, redone[f],
-                              holder)) {
+      bool ok = false;
+      try {
+        ok = triangulate_region(points_, region, outline, segments, facets[f].normal, facets[f].point, redone[f],
+                                holder);
+      } catch (const std::exception&) {  // CGAL's checks on degenerate input: keep the facet as it is
+        ok = false;
+      }
+      if (!ok) {
         redone[f].clear();
         if (report_.imprint_failures++ == 0)
           report_.first_imprint_failure = in_.where(origin_[source_[facets[f].triangles[0]]]);

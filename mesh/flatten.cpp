@@ -212,7 +212,7 @@ FlattenReport flatten_polygons(std::vector<Vec3d>& points, const std::vector<std
           allowed = std::min(allowed, options.relative_tolerance * fits[p].width);
       }
       const Vec3d moved = place_corner(points[v], hard, soft);
-      if ((moved - original[v]).norm() <= allowed) points[v] = moved;
+      if (is_finite(moved) && (moved - original[v]).norm() <= allowed) points[v] = moved;
     }
     bool all_flat = true;
     for (auto p : near_planar) {

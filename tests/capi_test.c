@@ -464,8 +464,59 @@ static void test_errors(void) {
   dynrad_options_destroy(NULL);
 }
 
+/* A glowing floor 4 x 4 with a closed unit cube standing on it: imprinting (the default)
+ * removes the floor under the cube and the cube's bottom, so the lit surfaces have
+ * 16 - 1 + 5 = 20 m2; dynrad_options_set_imprint(o, 0) keeps them: 22 m2. */
+static void test_imprint(void) {
+  double positions[3 * 12];
+  const double corners[12][3] = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {1, 1, 0}, {2, 1, 0},
+                                 {2, 2, 0}, {1, 2, 0}, {1, 1, 1}, {2, 1, 1}, {2, 2, 1}, {1, 2, 1}};
+  for (int i = 0; i < 12; ++i)
+    for (int c = 0; c < 3; ++c) positions[3 * i + c] = corners[i][c];
+  /* the floor facing up; the cube's faces outward: bottom, top, four sides */
+  const uint32_t indices[] = {0, 1, 2, 3, 4, 7, 6, 5, 8, 9, 10, 11, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 7, 4, 8, 11};
+  const uint32_t sizes[7] = {4, 4, 4, 4, 4, 4, 4};
+  const uint32_t materials[7] = {0, 1, 1, 1, 1, 1, 1};
+  const dynrad_material mats[2] = {grey(0.5, 1.0, "glow"), grey(0.5, 0.0, "box")};
+  dynrad_scene* scene = NULL;
+  const dynrad_status s = dynrad_scene_create(positions, 12, indices, sizes, 7, materials, mats, 2, &scene);
+  CHECK(s == DYNRAD_OK, "dynrad_scene_create: %s: %s", dynrad_status_name(s), dynrad_last_error());
+  if (!scene) return;
+  double areas[2] = {0, 0};
+  for (int run = 0; run < 2; ++run) {
+    dynrad_options* options = options_with(1, 0.5);
+    CHECK(dynrad_options_set_imprint(options, run == 0) == DYNRAD_OK, "%s", dynrad_last_error());
+    dynrad_result* result = NULL;
+    CHECK(dynrad_solve(scene, options, NULL, NULL, NULL, &result) == DYNRAD_OK, "%s", dynrad_last_error());
+    if (result) {
+      const size_t nv = dynrad_result_vertex_count(result), nt = dynrad_result_triangle_count(result);
+      double* xyz = malloc(3 * nv * sizeof(double));
+      uint32_t* tri = malloc(3 * nt * sizeof(uint32_t));
+      CHECK(dynrad_result_positions(result, xyz, nv) == DYNRAD_OK, "%s", dynrad_last_error());
+      CHECK(dynrad_result_triangles(result, tri, nt) == DYNRAD_OK, "%s", dynrad_last_error());
+      for (size_t t = 0; t < nt; ++t) {
+        const double* a = xyz + 3 * tri[3 * t];
+        const double* b = xyz + 3 * tri[3 * t + 1];
+        const double* c = xyz + 3 * tri[3 * t + 2];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        areas[run] += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      }
+      free(xyz);
+      free(tri);
+      dynrad_result_destroy(result);
+    }
+    dynrad_options_destroy(options);
+  }
+  CHECK(fabs(areas[0] - 20.0) < 1e-6, "imprinted: area %g, expected 20", areas[0]);
+  CHECK(fabs(areas[1] - 22.0) < 1e-6, "not imprinted: area %g, expected 22", areas[1]);
+  printf("imprint: %g m2 lit with, %g without\n", areas[0], areas[1]);
+  dynrad_scene_destroy(scene);
+}
+
 int main(void) {
   test_version();
+  test_imprint();
   test_furnace();
   test_ambient_and_overshoot();
   test_simplify();

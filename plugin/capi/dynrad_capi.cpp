@@ -35,6 +35,7 @@ struct dynrad_options {
   double patch_size = 0;  // 0: default for the scene
   double exposure = 0;    // 0: automatic
   bool simplify = true;   // merge flat regions before patching, as `dynrad solve`
+  bool imprint = true;    // imprint where surfaces meet, as `dynrad solve`
 };
 
 struct dynrad_result {
@@ -160,12 +161,14 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
   return soup;
 }
 
-std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup, bool merge_flat_regions = true) {
+std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup, bool merge_flat_regions = true, bool imprint = true) {
   // Flat regions merged before patching, as `dynrad solve` does by default, so that
   // both give one answer (mesh/simplify.h; the result is a new mesh either way).
   SimplifyOptions simplify;
   simplify.enabled = merge_flat_regions;
-  LoadedScene loaded = load_soup(soup, kInputLabel, {}, simplify);
+  CleanupOptions cleanup;
+  cleanup.imprint = imprint;
+  LoadedScene loaded = load_soup(soup, kInputLabel, cleanup, simplify);
   if (!(loaded.mesh->emitting_area() > 0))
     fail(DYNRAD_NO_EMITTER,
          "dynrad_scene_create: every emitting polygon is degenerate (no area), so nothing emits light.");
@@ -182,11 +185,11 @@ dynrad_stop_reason stop_reason(const std::string& stopped_by) {
 dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress, void* user,
                      const volatile int* cancel) {
   std::unique_ptr<SceneMesh> mesh;
-  if (options.simplify) {  // the mesh dynrad_scene_create built is simplified
+  if (options.simplify && options.imprint) {  // the mesh dynrad_scene_create built is the default one
     std::lock_guard<std::mutex> lock(scene.mutex);
     mesh = std::move(scene.unused_mesh);
   }
-  if (!mesh) mesh = build_mesh(scene.soup, options.simplify);
+  if (!mesh) mesh = build_mesh(scene.soup, options.simplify, options.imprint);
 
   // As `dynrad solve` does (plugin/cli/cmd_solve.cpp), so that both give one answer.
   const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(*mesh);
@@ -465,6 +468,12 @@ dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, doubl
 dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on) {
   const dynrad_status s = set_option(options, true, "");
   if (s == DYNRAD_OK) options->simplify = on != 0;
+  return s;
+}
+
+dynrad_status dynrad_options_set_imprint(dynrad_options* options, int on) {
+  const dynrad_status s = set_option(options, true, "");
+  if (s == DYNRAD_OK) options->imprint = on != 0;
   return s;
 }
 

@@ -143,6 +143,10 @@ DYNRAD_API dynrad_status dynrad_options_set_negligible_share(dynrad_options* opt
  * `dynrad solve`; 0: keep every triangle, as `--no-simplify`). Lossless for the light;
  * the result's mesh is a refinement of the merged one. */
 DYNRAD_API dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on);
+/* Imprint where surfaces cross or touch, and remove the parts no light reaches
+ * (nonzero: on, the default, as `dynrad solve`; 0: as `--no-imprint`). See the README,
+ * "Imprinting". */
+DYNRAD_API dynrad_status dynrad_options_set_imprint(dynrad_options* options, int on);
 /* Shape each shot's unshot radiosity by the sender's corners and edge midpoints
  * (nonzero: on, the default) or shoot it evenly (0: `--flat-senders`). */
 DYNRAD_API dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on);
