@@ -6,11 +6,13 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <set>
+#include <tuple>
 
 namespace dynrad {
 namespace {
@@ -196,31 +198,33 @@ class HiddenFinder {
   // when one whose front it saw becomes hidden, until nothing changes.
   void find_enclosed() {
     const std::vector<Vec3d> directions = cosine_directions(options_.rays);
-    std::vector<std::vector<std::uint32_t>> seen(pieces_.size());
-    std::vector<std::uint32_t> queue;
+    std::vector<std::vector<std::uint32_t>> watchers(pieces_.size());  // who saw each piece's front
+    std::vector<std::uint32_t> queue, seen;
     for (std::uint32_t p = 0; p < pieces_.size(); ++p)
       if (pieces_[p].tested) queue.push_back(p);
     report_.pieces_tested = queue.size();
-    std::vector<char> changed(pieces_.size(), 0);
+    std::vector<char> queued(pieces_.size(), 0);
     while (!queue.empty()) {
-      std::vector<std::uint32_t> now_hidden;
+      std::vector<std::uint32_t> next;
       for (auto p : queue) {
+        queued[p] = 0;
         if (pieces_[p].state != State::visible) continue;
-        seen[p].clear();
-        if (enclosed(pieces_[p], directions, seen[p])) {
+        seen.clear();
+        if (enclosed(pieces_[p], directions, seen)) {
           pieces_[p].state = State::enclosed;
           ++report_.enclosed_pieces;
-          now_hidden.push_back(p);
+          for (auto w : watchers[p])
+            if (!queued[w] && pieces_[w].state == State::visible) {
+              queued[w] = 1;
+              next.push_back(w);
+            }
+          watchers[p].clear();
+        } else {
+          for (auto h : seen) watchers[h].push_back(p);
         }
       }
-      for (auto p : now_hidden) changed[p] = 1;
-      queue.clear();
-      for (std::uint32_t p = 0; p < pieces_.size(); ++p) {
-        if (!pieces_[p].tested || pieces_[p].state != State::visible) continue;
-        if (std::any_of(seen[p].begin(), seen[p].end(), [&](std::uint32_t q) { return changed[q]; }))
-          queue.push_back(p);
-      }
-      for (auto p : now_hidden) changed[p] = 0;
+      std::sort(next.begin(), next.end());  // the same order whatever found them first
+      queue.swap(next);
     }
   }
 
@@ -247,6 +251,18 @@ class HiddenFinder {
       if (++open > open_allowed) return false;
     }
     return true;
+  }
+
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t>;
+  Box box_of(std::uint32_t t) const {
+    Bounds b;
+    for (int k = 0; k < 3; ++k) b.extend(corner(t, k));
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = b.lo[k] - in_.tolerance;
+      hi[k] = b.hi[k] + in_.tolerance;
+    }
+    return Box(lo, hi, t);
   }
 
   // True when triangle t lies over triangle u (both in one plane): its centroid, or a
@@ -285,23 +301,42 @@ class HiddenFinder {
       bool same_facing;
     };
     std::vector<Pair> pairs;
+    std::vector<Box> a_boxes, b_boxes;
     for (const auto& overlap : in_.overlaps) {
       if (std::max(overlap.a, overlap.b) >= facet_triangles.size()) continue;
-      for (auto t : facet_triangles[overlap.a])
-        for (auto u : facet_triangles[overlap.b])
-          if (over(t, u) || over(u, t))
-            pairs.push_back({t, u, overlap.a, overlap.b, overlap.same_facing});
+      a_boxes.clear();
+      b_boxes.clear();
+      for (auto t : facet_triangles[overlap.a]) a_boxes.push_back(box_of(t));
+      for (auto u : facet_triangles[overlap.b]) b_boxes.push_back(box_of(u));
+      CGAL::box_intersection_d(a_boxes.begin(), a_boxes.end(), b_boxes.begin(), b_boxes.end(),
+                               [&](const Box& x, const Box& y) {
+                                 const std::uint32_t t = x.info(), u = y.info();
+                                 if (over(t, u) || over(u, t))
+                                   pairs.push_back({t, u, overlap.a, overlap.b, overlap.same_facing});
+                               });
     }
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {  // a fixed order
+      return std::tie(x.t, x.u) < std::tie(y.t, y.u);
+    });
     std::set<std::uint32_t> face_to_face, covered;
-    // Face to face: hidden spreads across such contacts (a chain is short: repeat).
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (const Pair& pair : pairs) {
-        if (pair.same_facing || closed(state_[pair.t]) == closed(state_[pair.u])) continue;
-        const std::uint32_t now = closed(state_[pair.t]) ? pair.u : pair.t;
-        state_[now] = State::face_to_face;
-        face_to_face.insert(piece_of_[now]);
-        changed = true;
+    // Face to face: hidden spreads across such contacts, from every hidden triangle.
+    std::vector<std::vector<std::uint32_t>> contacts(in_.triangles.size());
+    for (const Pair& pair : pairs) {
+      if (pair.same_facing) continue;
+      contacts[pair.t].push_back(pair.u);
+      contacts[pair.u].push_back(pair.t);
+    }
+    std::vector<std::uint32_t> spread;
+    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t)
+      if (closed(state_[t]) && !contacts[t].empty()) spread.push_back(t);
+    while (!spread.empty()) {
+      const std::uint32_t t = spread.back();
+      spread.pop_back();
+      for (auto u : contacts[t]) {
+        if (closed(state_[u])) continue;
+        state_[u] = State::face_to_face;
+        face_to_face.insert(piece_of_[u]);
+        spread.push_back(u);
       }
     }
     // Covered: of two visible triangles facing the same way, the smaller facet's stays

@@ -195,6 +195,28 @@ TEST(Imprint, ALampDrawnOnTheCeilingCoversIt) {
   EXPECT_NEAR(area(c.soup, "ceiling"), 15.0, 1e-9);
 }
 
+// Found by fuzzing: a damaged room whose faces piled up in one plane (22,000 pieces) took
+// 31 s in the hidden-part rules (every triangle pair of two overlapping facets, every
+// piece tested again after each hiding); now 0.9 s. The same shape here: 40 nested
+// squares on a floor, all facing up. Wherever several overlap, the smallest stays, so
+// what is left covers the largest square once.
+TEST(Imprint, NestedCopiesInOnePlaneLeaveOneSurface) {
+  SceneBuilder b;
+  const auto grey = b.material("grey", 0.5);
+  double total = 0;
+  for (int k = 1; k <= 40; ++k) {
+    b.group("square" + std::to_string(k));
+    const double h = 0.025 * k;
+    b.rectangle(-h, -h, h, h, 0, +1, grey);
+    total += 4 * h * h;
+  }
+  const Cleaned c = clean(b.soup());
+  EXPECT_NEAR(area(c.soup), 4.0, 1e-9);
+  EXPECT_NEAR(c.report.hidden_area, total - 4.0, 1e-9);
+  SceneMesh mesh(c.soup);
+  EXPECT_EQ(test::count_t_vertices(mesh), 0u);
+}
+
 TEST(Imprint, CleaningACleanedMeshChangesNothing) {
   for (const std::string& name : {std::string("storey.obj"), std::string("cornell_box.obj")}) {
     const PolygonSoup input = read_input(test::sample(name));
