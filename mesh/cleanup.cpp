@@ -303,8 +303,56 @@ class Cleaner {
     if (std::find(found.touched.begin(), found.touched.end(), 1) == found.touched.end()) return;  // nothing meets
     const std::vector<ClosedSurface> solids = closed_surfaces();  // of the model as given
 
-    // Facets with lines on them, triangulated again; each new triangle keeps the input
-    // polygon of the old triangle that holds it.
+    SecondPass next = retriangulate_facets(facets, facet_of, found);
+    const double area_before = triangles_area();
+
+    // Steps 1-3, 5 and 6 again, on the triangles: what they repair now was made by
+    // imprinting, so the counts of the first pass stand.
+    const CleanupReport first_pass = report_;
+    polygons_ = std::move(next.polygons);
+    origin_ = std::move(next.origin);
+    keep_.assign(polygons_.size(), 1);
+    merge_points();
+    drop_repeated_corners();
+    if (options_.snap_t_junctions && tolerance_ > 0) snap_t_junctions();
+    triangulate();
+    // Copies in one plane are left to the hidden-part rules, which keep the smaller
+    // surface (a lamp on a ceiling), not the first.
+    drop_bad_triangles(Duplicates::none);
+    report_ = first_pass;
+
+    std::vector<std::uint32_t> triangle_facet(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) triangle_facet[i] = next.facet[source_[i]];
+    std::vector<double> facet_area(facets.size(), 0.0);
+    for (std::size_t i = 0; i < triangles_.size(); ++i) facet_area[triangle_facet[i]] += triangle_area(triangles_[i]);
+    HiddenReport hidden;
+    const std::vector<char> is_hidden = find_hidden_triangles(
+        {solids, points_, triangles_, triangle_facet, found.touched, found.overlaps, facet_area, tolerance_},
+        options_.hidden, hidden);
+    report_.hidden_pieces =
+        hidden.inside_solid_pieces + hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      if (is_hidden[i]) continue;
+      triangles_[kept] = triangles_[i];
+      source_[kept++] = source_[i];
+    }
+    triangles_.resize(kept);
+    source_.resize(kept);
+    // What left: the hidden parts (and any sliver the second pass found to have no area).
+    report_.hidden_area = std::max(0.0, area_before - triangles_area());
+  }
+
+  // The polygons for the second pass: the triangles of facets with lines on them,
+  // triangulated again (each new triangle keeps the input polygon of the old triangle
+  // that holds it), and the others' triangles as they were.
+  struct SecondPass {
+    std::vector<std::vector<std::uint32_t>> polygons;
+    std::vector<std::uint32_t> origin;  // input polygon
+    std::vector<std::uint32_t> facet;
+  };
+  SecondPass retriangulate_facets(const std::vector<Facet>& facets, const std::vector<std::uint32_t>& facet_of,
+                                  Imprints& found) {
     std::vector<std::vector<Triangle>> redone(facets.size());
     std::vector<std::vector<std::uint32_t>> redone_polygon(facets.size());
     std::set<Segment> lines;
@@ -337,63 +385,25 @@ class Cleaner {
       }
     }
     report_.imprinted_edges = lines.size();
-    std::vector<std::vector<std::uint32_t>> polygons;
-    std::vector<std::uint32_t> origin, polygon_facet;
+    SecondPass next;
     std::vector<char> emitted(facets.size(), 0);
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
       const std::uint32_t f = facet_of[i];
       if (redone[f].empty()) {
-        polygons.push_back({triangles_[i][0], triangles_[i][1], triangles_[i][2]});
-        origin.push_back(origin_[source_[i]]);
-        polygon_facet.push_back(f);
+        next.polygons.push_back({triangles_[i][0], triangles_[i][1], triangles_[i][2]});
+        next.origin.push_back(origin_[source_[i]]);
+        next.facet.push_back(f);
       } else if (!emitted[f]) {
         emitted[f] = 1;
         for (std::size_t k = 0; k < redone[f].size(); ++k) {
           const Triangle& t = redone[f][k];
-          polygons.push_back({t[0], t[1], t[2]});
-          origin.push_back(redone_polygon[f][k]);
-          polygon_facet.push_back(f);
+          next.polygons.push_back({t[0], t[1], t[2]});
+          next.origin.push_back(redone_polygon[f][k]);
+          next.facet.push_back(f);
         }
       }
     }
-    const double area_before = triangles_area();
-
-    // Steps 1-3, 5 and 6 again, on the triangles: what they repair now was made by
-    // imprinting, so the counts of the first pass stand.
-    const CleanupReport first_pass = report_;
-    polygons_ = std::move(polygons);
-    origin_ = std::move(origin);
-    keep_.assign(polygons_.size(), 1);
-    merge_points();
-    drop_repeated_corners();
-    if (options_.snap_t_junctions && tolerance_ > 0) snap_t_junctions();
-    triangulate();
-    // Copies in one plane are left to the hidden-part rules, which keep the smaller
-    // surface (a lamp on a ceiling), not the first.
-    drop_bad_triangles(Duplicates::none);
-    report_ = first_pass;
-
-    std::vector<std::uint32_t> triangle_facet(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) triangle_facet[i] = polygon_facet[source_[i]];
-    std::vector<double> facet_area(facets.size(), 0.0);
-    for (std::size_t i = 0; i < triangles_.size(); ++i) facet_area[triangle_facet[i]] += triangle_area(triangles_[i]);
-    HiddenReport hidden;
-    const std::vector<char> is_hidden = find_hidden_triangles(
-        {solids, points_, triangles_, triangle_facet, found.touched, found.overlaps, facet_area, tolerance_},
-        options_.hidden, hidden);
-    report_.hidden_pieces =
-        hidden.inside_solid_pieces + hidden.enclosed_pieces + hidden.face_to_face_pieces + hidden.covered_pieces;
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      if (is_hidden[i]) continue;
-      triangles_[kept] = triangles_[i];
-      source_[kept++] = source_[i];
-    }
-    triangles_.resize(kept);
-    source_.resize(kept);
-    // What left: hidden pieces, and copies in one plane that the second pass found to be
-    // duplicates.
-    report_.hidden_area = std::max(0.0, area_before - triangles_area());
+    return next;
   }
 
   double triangle_area(const Triangle& t) const {

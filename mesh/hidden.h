@@ -2,20 +2,24 @@
 // after imprinting). They leave the mesh: they would never receive light, and their dark
 // corners would be interpolated into the visible surface beside them.
 //
-// A piece is a connected part of one facet between imprinted lines. It is hidden when
+// A piece is a connected part of one facet between imprinted lines. A part of a surface
+// is hidden when
 //   1. enclosed: the point just in front of it is inside a closed solid of the model
 //      as given (a winding number of one: the floor under a wall or a closed cupboard,
 //      a wall's part inside a slab), or at least `enclosed_fraction` of the rays
 //      leaving its front (cosine-distributed, a fixed set) first hit the back of a
 //      surface or the front of a piece already found enclosed (the floor under a box
 //      without a bottom). An open box's floor sees out through its opening;
-//   2. face to face with a hidden piece: two pieces in one plane, facing each other
-//      (a cupboard's bottom on a floor): if one is hidden, so is the other. Two sheets
-//      back to back where neither is hidden (a wall drawn as two faces with no
+//   2. face to face with a hidden part: two surfaces in one plane, facing each other
+//      (a cupboard's bottom on a floor): where one is hidden, so is the other. Two
+//      sheets back to back where neither is hidden (a wall drawn as two faces with no
 //      thickness) both stay;
-//   3. covered: two pieces in one plane facing the same way (a lamp drawn on a
-//      ceiling, a rug on a floor): the piece of the smaller facet stays, the other
-//      goes, as the detail drawn on a surface is meant to be seen.
+//   3. covered: two surfaces in one plane facing the same way (a lamp drawn on a
+//      ceiling, a rug on a floor): where they overlap the smaller facet stays, the
+//      other goes, as the detail drawn on a surface is meant to be seen.
+// Rule 1 decides per piece; rules 2 and 3 per triangle, where the facets' triangles
+// overlap (imprinting has cut each along the other's outline, so a triangle lies wholly
+// inside the other facet or outside it).
 #pragma once
 
 #include "mesh/imprint.h"
