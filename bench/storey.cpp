@@ -23,9 +23,9 @@
 #include "radiosity/solver.h"
 #include "radiosity/visibility.h"
 
-#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cmath>
@@ -127,10 +127,11 @@ Fringe fringe(const SceneMesh& mesh, const rad::Solver::Output& out, const Layou
   double worst = 0, measured = 0;
   for (const auto& room : layout.rooms) {
     // Each wall: a line 5 cm in from it, from 30 cm after one corner to 30 cm before the other.
-    const std::array<std::array<double, 4>, 4> lines = {{{room[0] + 0.3, room[1] + 0.05, room[2] - 0.3, room[1] + 0.05},
-                                                         {room[0] + 0.3, room[3] - 0.05, room[2] - 0.3, room[3] - 0.05},
-                                                         {room[0] + 0.05, room[1] + 0.3, room[0] + 0.05, room[3] - 0.3},
-                                                         {room[2] - 0.05, room[1] + 0.3, room[2] - 0.05, room[3] - 0.3}}};
+    const std::array<std::array<double, 4>, 4> lines = {
+        {{room[0] + 0.3, room[1] + 0.05, room[2] - 0.3, room[1] + 0.05},
+         {room[0] + 0.3, room[3] - 0.05, room[2] - 0.3, room[3] - 0.05},
+         {room[0] + 0.05, room[1] + 0.3, room[0] + 0.05, room[3] - 0.3},
+         {room[2] - 0.05, room[1] + 0.3, room[2] - 0.05, room[3] - 0.3}}};
     for (const auto& line : lines) {
       const double length = std::hypot(line[2] - line[0], line[3] - line[1]);
       const int samples = static_cast<int>(length / 0.01);
@@ -213,9 +214,9 @@ Figures solve_in_child(const std::string& model, const Layout& layout, bool impr
     close(fd[0]);
     const Figures f = solve_once(model, layout, imprint);
     const std::string text = std::to_string(f.seconds) + " " + std::to_string(f.fringe) + " " +
-                             std::to_string(f.metres) + " " +
-                             std::to_string(f.peak_mib) + " " + std::to_string(f.elements) + " " +
-                             std::to_string(f.patches) + " " + std::to_string(f.shots);
+                             std::to_string(f.metres) + " " + std::to_string(f.peak_mib) + " " +
+                             std::to_string(f.elements) + " " + std::to_string(f.patches) + " " +
+                             std::to_string(f.shots);
     if (write(fd[1], text.data(), text.size()) < 0) _exit(1);
     _exit(0);
   }

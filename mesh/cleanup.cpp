@@ -420,7 +420,7 @@ class Cleaner {
   // edge: winding numbers add).
   std::vector<ClosedSurface> closed_surfaces() const {
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> users;  // undirected edge -> triangles
-    std::unordered_map<std::uint64_t, int> balance;                         // directed count, a < b positive
+    std::unordered_map<std::uint64_t, int> balance;                       // directed count, a < b positive
     for (std::uint32_t t = 0; t < triangles_.size(); ++t)
       for (int k = 0; k < 3; ++k) {
         const std::uint64_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
@@ -484,8 +484,7 @@ class Cleaner {
     std::vector<std::uint32_t> kept_source;
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
       const Triangle& t = triangles_[i];
-      const double area =
-          0.5 * OpenMesh::cross(points_[t[1]] - points_[t[0]], points_[t[2]] - points_[t[0]]).norm();
+      const double area = 0.5 * OpenMesh::cross(points_[t[1]] - points_[t[0]], points_[t[2]] - points_[t[0]]).norm();
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || area <= min_area_) {
         ++report_.degenerate_triangles;
         note_problem(source_[i]);

@@ -37,25 +37,25 @@ struct CleanupOptions {
 struct CleanupReport {
   std::size_t input_points = 0;
   std::size_t input_polygons = 0;
-  std::size_t merged_points = 0;          // points merged into a neighbour within tolerance
-  std::size_t degenerate_polygons = 0;    // fewer than 3 distinct points, or no area
-  std::size_t t_junctions = 0;            // points inserted into other polygons' edges
-  std::size_t triangulated_polygons = 0;  // polygons with more than 3 corners
+  std::size_t merged_points = 0;              // points merged into a neighbour within tolerance
+  std::size_t degenerate_polygons = 0;        // fewer than 3 distinct points, or no area
+  std::size_t t_junctions = 0;                // points inserted into other polygons' edges
+  std::size_t triangulated_polygons = 0;      // polygons with more than 3 corners
   std::size_t untriangulatable_polygons = 0;  // self-intersecting loops CGAL could not fill
-  std::size_t degenerate_triangles = 0;   // zero-area triangles dropped
-  std::size_t duplicate_triangles = 0;    // same corners, same facing
-  std::size_t non_manifold_edges = 0;     // edges with >2 faces or disagreeing facing, cut
-  std::size_t split_vertices = 0;         // vertex copies made while cutting those edges
-  std::size_t unused_points = 0;          // points no face refers to, dropped
-  std::size_t flattened_polygons = 0;     // near-planar polygons made planar
-  std::size_t warped_polygons = 0;        // too far from planar to flatten: triangulated as they are
-  double largest_flattening_move = 0;     // model units
-  std::size_t imprinted_edges = 0;        // lines where surfaces meet, added as edges (each once)
-  std::size_t imprinted_facets = 0;       // facets triangulated again with such lines
-  std::size_t imprint_failures = 0;       // facets whose lines could not be added: lit as they were
-  std::string first_imprint_failure;      // where the first of those came from
-  std::size_t hidden_pieces = 0;          // pieces removed because no light can reach them
-  double hidden_area = 0;                 // their area, model units squared
+  std::size_t degenerate_triangles = 0;       // zero-area triangles dropped
+  std::size_t duplicate_triangles = 0;        // same corners, same facing
+  std::size_t non_manifold_edges = 0;         // edges with >2 faces or disagreeing facing, cut
+  std::size_t split_vertices = 0;             // vertex copies made while cutting those edges
+  std::size_t unused_points = 0;              // points no face refers to, dropped
+  std::size_t flattened_polygons = 0;         // near-planar polygons made planar
+  std::size_t warped_polygons = 0;            // too far from planar to flatten: triangulated as they are
+  double largest_flattening_move = 0;         // model units
+  std::size_t imprinted_edges = 0;            // lines where surfaces meet, added as edges (each once)
+  std::size_t imprinted_facets = 0;           // facets triangulated again with such lines
+  std::size_t imprint_failures = 0;           // facets whose lines could not be added: lit as they were
+  std::string first_imprint_failure;          // where the first of those came from
+  std::size_t hidden_pieces = 0;              // pieces removed because no light can reach them
+  double hidden_area = 0;                     // their area, model units squared
   std::size_t output_points = 0;
   std::size_t output_triangles = 0;
   std::string first_problem;  // where the first dropped polygon came from, for messages

@@ -1,26 +1,20 @@
-// Hidden parts: pieces, rays from their fronts (CGAL's AABB tree), and the rules for
-// surfaces in one plane (see hidden.h).
+// Hidden parts: pieces, rays from their fronts (Embree, mesh/ray_cast.h), and the rules
+// for surfaces in one plane (see hidden.h).
 #include "mesh/hidden.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "mesh/ray_cast.h"
+
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <set>
 #include <tuple>
 
 namespace dynrad {
 namespace {
-
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using TriangleList = std::vector<K::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<K, TriangleList::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 struct Disjoint {
   std::vector<std::uint32_t> parent;
@@ -141,18 +135,7 @@ class HiddenFinder {
     }
   }
 
-  void build_tree() {
-    triangles3_.reserve(in_.triangles.size());
-    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) {
-      auto p = [&](int k) {
-        const Vec3d v = corner(t, k);
-        return K::Point_3(v[0], v[1], v[2]);
-      };
-      triangles3_.emplace_back(p(0), p(1), p(2));
-    }
-    tree_.insert(triangles3_.begin(), triangles3_.end());
-    tree_.build();
-  }
+  void build_tree() { rays_ = std::make_unique<RayCaster>(in_.points, in_.triangles); }
 
   // The point in front of a piece: off its plane by more than surfaces in it may
   // stray, well within the piece.
@@ -234,15 +217,15 @@ class HiddenFinder {
     const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
     const Vec3d u = OpenMesh::cross(helper, n).normalized(), v = OpenMesh::cross(n, u);
     const Vec3d origin = front_point(piece);
-    const K::Point_3 source(origin[0], origin[1], origin[2]);
+    if (!is_finite(origin) || !(piece.normal.norm() > 0.5)) return false;
     const int rays = static_cast<int>(directions.size());
     const int open_allowed = rays - static_cast<int>(std::ceil(options_.enclosed_fraction * rays));
     int open = 0;
     for (const Vec3d& local : directions) {
       const Vec3d d = u * local[0] + v * local[1] + n * local[2];
-      const auto hit = tree_.first_intersected_primitive(K::Ray_3(source, K::Vector_3(d[0], d[1], d[2])));
-      if (hit) {
-        const auto t = static_cast<std::uint32_t>(*hit - triangles3_.begin());
+      const long hit = rays_->first_hit(origin, d);
+      if (hit >= 0) {
+        const auto t = static_cast<std::uint32_t>(hit);
         if (OpenMesh::dot(area_vector(t), d) > 0) continue;  // a back
         const std::uint32_t h = piece_of_[t];
         if (closed(pieces_[h].state)) continue;
@@ -359,8 +342,7 @@ class HiddenFinder {
   std::vector<Piece> pieces_;
   std::vector<std::uint32_t> piece_of_;  // per triangle
   std::vector<State> state_;             // per triangle
-  TriangleList triangles3_;
-  Tree tree_;
+  std::unique_ptr<RayCaster> rays_;
 };
 
 }  // namespace

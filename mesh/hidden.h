@@ -30,7 +30,7 @@
 namespace dynrad {
 
 struct HiddenOptions {
-  int rays = 32;                   // per piece, from a fixed cosine-distributed set
+  int rays = 16;                   // per piece, from a fixed cosine-distributed set
   double enclosed_fraction = 0.9;  // share of rays that must hit a back for "enclosed"
 };
 
@@ -50,11 +50,11 @@ struct HiddenInput {
   const std::vector<ClosedSurface>& solids;  // closed surfaces facing out (others count nothing)
   const std::vector<Vec3d>& points;
   const std::vector<Triangle>& triangles;
-  const std::vector<std::uint32_t>& facet_of;    // per triangle
-  const std::vector<char>& touched;              // per facet: only these are tested
+  const std::vector<std::uint32_t>& facet_of;  // per triangle
+  const std::vector<char>& touched;            // per facet: only these are tested
   const std::vector<Imprints::Overlap>& overlaps;
-  const std::vector<double>& facet_area;         // per facet, for rule 3
-  double tolerance;                              // as for imprinting
+  const std::vector<double>& facet_area;  // per facet, for rule 3
+  double tolerance;                       // as for imprinting
 };
 
 // Per triangle: 1 where it is hidden.

@@ -23,9 +23,8 @@ struct Piece {
 // Joins pieces of one line that overlap or touch (gaps up to `gap`) and returns them
 // as segments.
 void join_pieces(std::vector<Piece>& pieces, double gap, std::vector<Segment>& out) {
-  std::sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) {
-    return x.from < y.from || (x.from == y.from && x.to > y.to);
-  });
+  std::sort(pieces.begin(), pieces.end(),
+            [](const Piece& x, const Piece& y) { return x.from < y.from || (x.from == y.from && x.to > y.to); });
   std::size_t i = 0;
   while (i < pieces.size()) {
     Piece run = pieces[i++];
@@ -211,7 +210,7 @@ class Imprinter {
       result.touched[f1] = result.touched[f2] = 1;
       return;
     }
-    if (shared == 2) return;  // neighbours across an edge: they meet along it
+    if (shared == 2) return;       // neighbours across an edge: they meet along it
     std::array<double, 3> da, db;  // a's corners from f2's plane, b's from f1's
     bool a_on = true, b_on = true;
     for (int k = 0; k < 3; ++k) {

@@ -103,7 +103,8 @@ bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::u
       corner = index + 1;
       handles.push_back(vh);
     }
-    for (std::size_t i = 0; i < handles.size(); ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
+    for (std::size_t i = 0; i < handles.size(); ++i)
+      cdt.insert_constraint(handles[i], handles[(i + 1) % handles.size()]);
   } catch (const LoopCdt::Intersection_of_constraints_exception&) {
     return false;  // self-intersecting loop
   }
@@ -120,9 +121,8 @@ bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::u
 }
 
 bool triangulate_region(std::vector<Vec3d>& points, const std::vector<Triangle>& region,
-                        const std::vector<Segment>& outline, const std::vector<Segment>& segments,
-                        const Vec3d& normal, const Vec3d& plane_point, std::vector<Triangle>& out,
-                        std::vector<std::uint32_t>& from) {
+                        const std::vector<Segment>& outline, const std::vector<Segment>& segments, const Vec3d& normal,
+                        const Vec3d& plane_point, std::vector<Triangle>& out, std::vector<std::uint32_t>& from) {
   const Frame frame(normal);
   auto to_2d = [&](const Vec3d& p) {
     const Vec3d d = p - plane_point;

@@ -19,8 +19,8 @@ using Segment = std::array<std::uint32_t, 2>;  // two point ids
 // about `normal`. Without Steiner points: an n-gon gives n - 2 triangles. Returns false,
 // appending nothing, when the loop intersects itself or two corners fall onto one point
 // of the plane.
-bool triangulate_polygon(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop,
-                         const Vec3d& normal, std::vector<Triangle>& out);
+bool triangulate_polygon(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop, const Vec3d& normal,
+                         std::vector<Triangle>& out);
 
 // Triangulates again the flat region that `region` (triangles into `points`, in one
 // plane, facing `normal`) covers, with the edges of `outline` (its boundary, possibly
@@ -31,9 +31,8 @@ bool triangulate_polygon(const std::vector<Vec3d>& points, const std::vector<std
 // triangle that holds each. Returns false, appending nothing, when the new triangles
 // do not cover the region's area (to 1e-9 relative): the caller keeps the old ones.
 bool triangulate_region(std::vector<Vec3d>& points, const std::vector<Triangle>& region,
-                        const std::vector<Segment>& outline, const std::vector<Segment>& segments,
-                        const Vec3d& normal, const Vec3d& plane_point, std::vector<Triangle>& out,
-                        std::vector<std::uint32_t>& from);
+                        const std::vector<Segment>& outline, const std::vector<Segment>& segments, const Vec3d& normal,
+                        const Vec3d& plane_point, std::vector<Triangle>& out, std::vector<std::uint32_t>& from);
 
 // Twice the area vector of a closed loop (Newell's method): its direction is the
 // loop's facing, robust for loops that are not quite planar.

@@ -9,8 +9,10 @@
 #
 # Sanitized code runs about 6 times slower than a release build. With --ci, the physics
 # tests that solve whole rooms to convergence (3 tests x 3 methods, and the energy
-# check for adaptive: 4 to 25 minutes each here), and the two that compare whole solves
-# with and without simplification or culling, are left to the release suite; the
+# check for adaptive: 4 to 25 minutes each here), the two that compare whole solves
+# with and without simplification or culling, and the two that compare rooms built on
+# slabs with clean ones by adaptive subdivision (imprint_physics_test), are left to the
+# release suite; the
 # furnace and per-shot energy tests, every command-line solve and every other test run
 # sanitized, so every solver path (progressive, adaptive, dynamic) still does.
 #
@@ -26,7 +28,7 @@ root=$(pwd)
 hosts='capi_test|blender_addon'
 exclude=(-E "$hosts")
 if [ "${1:-}" = "--ci" ]; then
-  exclude=(-E "$hosts|Physics\.(ClosedRoomReflectsAllPowerUntilAbsorbed|NoLightThroughAWallSharedByTwoRooms|CornellFloorIsRedderNextToTheRedWall)/|Physics\.EnergyIsConservedAfterEveryShot/adaptive|Simplify\.SolveAgreesWithAndWithoutSimplification|Culling\.NegligibleReceiversCostAtMostTheirStatedShare")
+  exclude=(-E "$hosts|Physics\.(ClosedRoomReflectsAllPowerUntilAbsorbed|NoLightThroughAWallSharedByTwoRooms|CornellFloorIsRedderNextToTheRedWall)/|Physics\.EnergyIsConservedAfterEveryShot/adaptive|Simplify\.SolveAgreesWithAndWithoutSimplification|Culling\.NegligibleReceiversCostAtMostTheirStatedShare|Junctions\.FloorByTheWallsIsLitAsIfItEndedThere/adaptive|BoxOnTheFloor\.")
 elif [ $# -gt 0 ]; then
   echo "usage: $0 [--ci]" >&2
   exit 2

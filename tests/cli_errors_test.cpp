@@ -306,3 +306,28 @@ TEST(CommandLine, BadOptionsExitWithCode2) {
 
 }  // namespace
 }  // namespace dynrad
+
+namespace dynrad {
+namespace {
+
+// Found by fuzzing: a binary STL whose two triangles meet with one of them collinear to
+// CGAL's exact predicates; the hidden-part rays asked CGAL to intersect a ray with it (a
+// precondition failure, an abort in checked builds). Degenerate triangles now block no
+// ray. The file loads, or is refused, but never crashes.
+TEST(BadInput, DegenerateTrianglesFromAnStlDoNotStopImprinting) {
+  test::TempDir dir;
+  const std::string hex =
+      "62696e61727920736565642020202020202020202020202020202020202020202020202020202020202020202020202020202020"
+      "202020202020202020202020202020202020202020202020202020200200000000000000000000000000803f0000000000000000"
+      "a40030656e646c6f6f70202d310a206f75746572206c6f6f700a2020766572746578205b203000310a2020766572746178203020"
+      "3120300a202076657274657800000000000000000000803f803f0000";
+  std::string bytes;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
+    bytes.push_back(static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
+  ASSERT_EQ(bytes.size(), 184u);
+  const auto r = test::run_dynrad("info '" + dir.write("fuzz.stl", bytes) + "'");
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2) << r.output;
+}
+
+}  // namespace
+}  // namespace dynrad

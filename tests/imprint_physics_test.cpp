@@ -135,8 +135,7 @@ double largest_difference(const Lit& a, const Lit& b, const std::vector<std::arr
 }
 
 class Junctions : public ::testing::TestWithParam<Method> {};
-INSTANTIATE_TEST_SUITE_P(Methods, Junctions,
-                         ::testing::Values(Method::progressive, Method::adaptive, Method::dynamic),
+INSTANTIATE_TEST_SUITE_P(Methods, Junctions, ::testing::Values(Method::progressive, Method::adaptive, Method::dynamic),
                          [](const auto& param_info) { return std::string(method_name(param_info.param)); });
 
 TEST_P(Junctions, FloorByTheWallsIsLitAsIfItEndedThere) {
@@ -169,8 +168,8 @@ TEST_P(Junctions, HiddenPartsTakeNoLightAndTheBalanceHolds) {
   const TriMesh& mesh = slab.scene.mesh->mesh();
   for (std::size_t v = 0; v < slab.output.split.size(); ++v) {
     const Vec3d p = mesh.point(slab.output.split.source[v]);
-    const bool outside_room = p[0] < -1e-9 || p[0] > kX + 1e-9 || p[1] < -1e-9 || p[1] > kY + 1e-9 ||
-                              p[2] < -1e-9 || p[2] > kH + 1e-9;
+    const bool outside_room =
+        p[0] < -1e-9 || p[0] > kX + 1e-9 || p[1] < -1e-9 || p[1] > kY + 1e-9 || p[2] < -1e-9 || p[2] > kH + 1e-9;
     if (outside_room) {
       EXPECT_EQ(slab.output.radiosity[v].r, 0.0) << p;
     }

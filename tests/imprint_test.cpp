@@ -269,8 +269,8 @@ TEST(Imprint, TheStoreySampleLosesWhatIsInsideItsSolids) {
   EXPECT_NEAR(area_inside(c.soup, "floor", {3.5, 6.77, -1e-9}, {5.1, 8.85, 1e-9}), 0.0, 1e-12);
   EXPECT_NEAR(area_inside(c.soup, "plaster", {0.1, 0.1, -0.25 + 1e-6}, {11.9, 8.9, -1e-6}), 0.0, 1e-12);
   // The rooms' floors are there: 4 rooms of the layout, less the furniture's footprints.
-  const double rooms = (6.44 - 0.15) * (4.94 - 0.15) + (11.85 - 6.56) * (4.94 - 0.15) +
-                       (5.94 - 0.15) * (8.85 - 5.06) + (11.85 - 6.06) * (8.85 - 5.06);
+  const double rooms = (6.44 - 0.15) * (4.94 - 0.15) + (11.85 - 6.56) * (4.94 - 0.15) + (5.94 - 0.15) * (8.85 - 5.06) +
+                       (11.85 - 6.06) * (8.85 - 5.06);
   // Floor in the four inner doors' openings. In the entrance the wall's own threshold
   // (its top below the door, in the floor's plane) covers the slab.
   const double doors = 4 * 0.9 * 0.12;
@@ -290,9 +290,9 @@ TEST(Flatten, TheCornellRedWallIsMadePlanarAndStaysConnected) {
   for (std::size_t t = 0; t < c.soup.triangles.size(); ++t) {
     if (c.soup.materials[c.soup.material[t]].name != "red") continue;
     const auto& tri = c.soup.triangles[t];
-    const Vec3d n = OpenMesh::cross(c.soup.points[tri[1]] - c.soup.points[tri[0]],
-                                    c.soup.points[tri[2]] - c.soup.points[tri[0]])
-                        .normalized();
+    const Vec3d n =
+        OpenMesh::cross(c.soup.points[tri[1]] - c.soup.points[tri[0]], c.soup.points[tri[2]] - c.soup.points[tri[0]])
+            .normalized();
     if (red++ == 0) first = n;
     EXPECT_GT(OpenMesh::dot(n, first), 1 - 1e-12);
   }
@@ -370,8 +370,7 @@ TEST(Imprint, AFacetThatCannotBeImprintedIsNamedAndTheRestIsImprinted) {
   soup.origin.push_back(SourceRef{0, 0, 5});
   const Cleaned c = clean(soup);
   EXPECT_EQ(c.report.imprint_failures, 1u);
-  EXPECT_NE(c.report.first_imprint_failure.find("generated face"), std::string::npos)
-      << c.report.first_imprint_failure;
+  EXPECT_NE(c.report.first_imprint_failure.find("generated face"), std::string::npos) << c.report.first_imprint_failure;
   EXPECT_GE(c.report.imprinted_facets, 1u);  // the square got the fan's line
   EXPECT_GT(c.soup.triangles.size(), 0u);
 }

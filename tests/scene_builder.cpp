@@ -52,8 +52,7 @@ void SceneBuilder::box(const Vec3d& lo, const Vec3d& hi, std::uint32_t material,
   }
 }
 
-void SceneBuilder::rectangle(double x0, double y0, double x1, double y1, double z, int facing,
-                             std::uint32_t material) {
+void SceneBuilder::rectangle(double x0, double y0, double x1, double y1, double z, int facing, std::uint32_t material) {
   const Vec3d a(x0, y0, z), b(x1, y0, z), c(x1, y1, z), d(x0, y1, z);
   if (facing > 0)
     quad(a, b, c, d, material);
