@@ -125,6 +125,9 @@ int run_solve(SolveCliOptions& options) {
   simplify.enabled = options.load.simplify;
   LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  if (cleanup.imprint && scene.cleanup.imprinted_edges > 0)
+    spdlog::info("imprinted {} lines where surfaces meet; removed {:.4g} (model units squared) that no light reaches",
+                 scene.cleanup.imprinted_edges, scene.cleanup.hidden_area);
   if (simplify.enabled)
     spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", scene.simplify.faces_before,
                  scene.simplify.faces_after, scene.simplify.seconds);
@@ -198,6 +201,9 @@ int run_solve(SolveCliOptions& options) {
     j["max_level"] = options.max_level;
     j["unshot_fraction"] = report.unshot_fraction;
     j["seconds"] = report.seconds;
+    j["imprint"] = {{"enabled", cleanup.imprint},
+                    {"imprinted_edges", scene.cleanup.imprinted_edges},
+                    {"hidden_area", scene.cleanup.hidden_area}};
     j["stopped_by"] = report.stopped_by;
     j["unshot_history"] = report.unshot_history;
     j["transfers_history"] = report.transfers_history;
