@@ -330,11 +330,11 @@ TEST(ProbeCommand, BadPointsNameTheLineAndWriteNothing) {
 // the program at once, writing nothing.
 TEST(SolveSignals, FirstInterruptWritesWithUnshotFractionSecondQuits) {
   test::TempDir dir;
-  const std::string solve = std::string("'") + DYNRAD_EXE + "' solve '" +
-                            test::sample("globillum_room_obstructed.obj") +
-                            "' --patch-size 0.15 --converge 1e-9 --time-limit 60 -o ";
-  auto r = test::run_shell("( " + solve + "'" + dir.path("once.ply") +
-                           "' & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo exit=$? )");
+  const std::string arguments = "solve '" + test::sample("globillum_room_obstructed.obj") +
+                                "' --patch-size 0.15 --converge 1e-9 --time-limit 60 -o ";
+  // The first signal 2 s into the solve, once the model is loaded (its log names the
+  // patches; before that, loading a sanitized build can take longer than a fixed wait).
+  auto r = test::run_dynrad_and_signal(arguments + "'" + dir.path("once.ply") + "'", 2, "INT");
   EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
   EXPECT_TRUE(std::regex_search(r.output, std::regex("interrupted: wrote the solution so far, with [0-9.]+% of the "
                                                      "emitted power not yet shot")))
@@ -344,9 +344,11 @@ TEST(SolveSignals, FirstInterruptWritesWithUnshotFractionSecondQuits) {
   // The second signal 20 ms after the first: the first is handled by then (the
   // process is still alive), and finishing the shot and writing 76k triangles takes
   // longer than that.
-  r = test::run_shell("( " + solve + "'" + dir.path("twice.ply") +
-                      "' & pid=$!; sleep 2; kill -INT $pid; sleep 0.02; kill -0 $pid && echo alive-after-first; "
-                      "kill -INT $pid; wait $pid; echo exit=$? )");
+  const std::string log = dir.path("twice.log");
+  r = test::run_shell("( '" + std::string(DYNRAD_EXE) + "' " + arguments + "'" + dir.path("twice.ply") + "' > '" + log +
+                      "' 2>&1 & pid=$!; for i in $(seq 3000); do grep -q ' patches' '" + log +
+                      "' && break; kill -0 $pid 2>/dev/null || break; sleep 0.2; done; sleep 2; kill -INT $pid; "
+                      "sleep 0.02; kill -0 $pid && echo alive-after-first; kill -INT $pid; wait $pid; echo exit=$? )");
   EXPECT_NE(r.output.find("alive-after-first"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output;  // 128 + SIGINT: killed by the signal
   EXPECT_FALSE(test::file_exists(dir.path("twice.ply")));
