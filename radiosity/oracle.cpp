@@ -33,7 +33,7 @@ bool adaptive_oracle(const OracleInputs& in, double threshold) { return cumulate
 
 bool dynamic_oracle(const OracleInputs& in, const OracleThresholds& t) {
   if (t.variant == OracleThresholds::Variant::pushdown)
-    return cumulated_gradient(in) > t.pushdown_cumulated_gradient &&  // the element's shading is uneven,
+    return (in.refined || cumulated_gradient(in) > t.pushdown_cumulated_gradient) &&  // the element's shading is uneven,
            pushdown_gradient(in, t.pushdown_floor) > t.pushdown;               // and interpolating this transfer would be wrong.
   return cumulated_gradient(in) > t.cumulated_gradient &&  // the element's shading is uneven,
          current_gradient(in) > t.current_gradient &&      // this sender is what makes it uneven,

@@ -71,6 +71,10 @@ struct OracleInputs {
   // The element's reflectance times the ambient radiosity (luminance), when the floor
   // uses it; 0 otherwise.
   double ambient = 0;
+  // The element has children already: the push-down oracle then asks only whether
+  // pushing this transfer down to them would be wrong (going on costs transfers, no
+  // new elements), not whether the element's shading is uneven.
+  bool refined = false;
 };
 
 double cumulated_gradient(const OracleInputs& in);

@@ -22,8 +22,10 @@
 //     subdivides a leaf when Figure 3's oracle holds;
 //   dynamic goes on only when its oracle holds (Figure 6's, or the push-down oracle
 //     that is the default, see oracle.h); where it stops, dB is pushed
-//     down to the elements already below q, linearly interpolated from q's corners
-//     (the paper's "energy transport derivation"), so no rays are spent on them.
+//     down to the elements already below q (the paper's "energy transport
+//     derivation"), so no rays are spent on them: interpolated from q's corners and
+//     edge midpoints by a quadratic (the paper: linearly from the corners; see
+//     RefineSettings::quadratic_pushdown).
 // Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a
 // split is always visited. In dynamic, new elements start from their parent's cumulated
 // radiosity, interpolated from its corners (Dubuis & Bieri); in adaptive, their values
@@ -130,10 +132,12 @@ bool Solver::shoot_once() {
         // oracle's first condition (the cumulated gradient) holds and it can decide. Its
         // midpoints also give q's mean form factor, should the shot stop at q.
         double mean_form_factor = -1;
+        std::array<double, 3> mid{};  // form factors at q's edge midpoints, where known
+        in.refined = refine_.refined_pushdown && !el.is_leaf();
         if (refine_.method == Method::dynamic && can_split && !odd &&
             refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
-            cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient) {
-          mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in);
+            (in.refined || cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient)) {
+          mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in, mid);
           in.ambient = (patch.reflectance * ambient_now).luminance();
         }
         bool go_on = false;
@@ -160,9 +164,20 @@ bool Solver::shoot_once() {
           if (refine_.method == Method::dynamic && !odd) out.count(el);
         } else {
           // The shot stops at q: q takes dB, and what is already below q gets it
-          // interpolated from q's corners (push-down) instead of a transfer of its own.
+          // interpolated from q's corners and edge midpoints (push-down) instead of a
+          // transfer of its own.
           value_[q] = in.cumulated;
-          push_down(q, in.current);
+          if (!el.is_leaf()) {
+            std::array<Rgb, 6> delta;
+            for (int k = 0; k < 3; ++k) delta[k] = in.current[k];
+            if (refine_.quadratic_pushdown && refine_.method == Method::dynamic) {
+              if (mean_form_factor < 0) midpoint_form_factors(q, mid);
+              for (int k = 0; k < 3; ++k) delta[3 + k] = patch.reflectance * shot * mid[k];
+            } else {
+              for (int k = 0; k < 3; ++k) delta[3 + k] = (in.current[k] + in.current[(k + 1) % 3]) * 0.5;
+            }
+            push_down(q, delta);
+          }
           out.terminals.push_back(q);
           out.reach.push_back(mean_form_factor >= 0 ? mean_form_factor * el.area : element_reach(q));
           out.count(el);

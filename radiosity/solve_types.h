@@ -50,6 +50,12 @@ struct SolveOptions {
   // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
+  // Stop when the estimated mean relative error of the written values
+  // (Solver::estimate_error) falls below this (0: off). `converge` still applies as a
+  // floor; when only the mesh's own error is left above the target (the unshot part is
+  // below a tenth of the target, or below a quarter of the mesh's part), the solve
+  // stops too: shooting on would buy little (stopped_by "error floor").
+  double error_target = 0;
   // Called at every shot boundary; returning true stops the solve there (signals).
   std::function<bool()> should_stop;
   // Called after every shot.
@@ -60,6 +66,14 @@ struct SolveOptions {
 // emitted = absorbed + escaped + unshot, up to rounding.
 struct EnergyBalance {
   Rgb emitted, absorbed, escaped, unshot;
+};
+
+// The estimated mean relative error of the written values, area-weighted over the
+// surfaces that reflect (see Solver::estimate_error for how).
+struct ErrorEstimate {
+  double unshot = 0;          // light not yet shot (what the ambient term leaves)
+  double discretisation = 0;  // the mesh: how much the values still bend at the finest elements
+  double total() const { return unshot + discretisation; }
 };
 
 struct SolveReport {
@@ -73,7 +87,7 @@ struct SolveReport {
   std::size_t receivers = 0;
   double unshot_fraction = 1;
   double seconds = 0;
-  std::string stopped_by;  // "converged", "iterations", "time limit", "interrupted"
+  std::string stopped_by;  // "error target", "error floor", "converged", "iterations", "time limit", "interrupted"
   std::vector<double> unshot_history;  // after each shot
   std::vector<std::uint64_t> transfers_history;  // energy transfers so far, after each shot
   double form_factor_sum_error = 0;    // mean |1 - sum of receiver form factors| before normalisation
@@ -86,6 +100,8 @@ struct SolveReport {
   std::uint64_t negligible_receivers = 0;  // of those, skipped for a negligible bound
   double negligible_share_max = 0;       // the largest bound on the power skipped in one shot
   EnergyBalance energy;
+  ErrorEstimate estimated_error;  // when the solve ended
+  double error_target = 0;        // SolveOptions::error_target
 };
 
 }  // namespace dynrad::rad

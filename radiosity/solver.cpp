@@ -476,7 +476,7 @@ double Solver::luminance_at(ElementId root, const Vec3d& p) const {
   for (;;) {
     const Element& el = hierarchy_.element(e);
     if (el.is_leaf()) return interpolate(e, value_[e], p).luminance() + pending;
-    pending += interpolate(e, pending_[e], p).luminance();
+    pending += quadratic(pending_[e], barycentric(e, p)).luminance();
     // The child whose triangle holds p (on the split line either one: values agree).
     const ElementId first = el.children[0];
     const Element& c = hierarchy_.element(first);
@@ -541,14 +541,11 @@ double Solver::element_reach(ElementId q) const {
   return element_form_factor(q) * hierarchy_.element(q).area;
 }
 
-double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const {
+void Solver::midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const {
   const Element& el = hierarchy_.element(q);
   const Patch& sender = patches_[sender_];
   const Vec3d& n = hierarchy_.normal(q);
   const Vec3d centroid = hierarchy_.centroid(q);
-  const double shot = (reflectance * current_shot_).luminance();
-  in.pushdown_error = in.current_peak = 0;
-  if (!(shot > 0)) return -1;
   // Far from the sender, what matters is the second difference of F along each edge,
   // F(mid) - (F(a) + F(b)) / 2, and the point-to-area form A cos cos / (pi r^2) gives it
   // within a fraction (R/r)^2 of itself (R: the sender's radius), at a fraction of the
@@ -566,27 +563,61 @@ double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Orac
   double far_at[3] = {0, 0, 0};
   if (far)
     for (int k = 0; k < 3; ++k) far_at[k] = far_form(receivers_[corner_receiver_[q][k]].point);
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    const CornerFormFactor& fa = corner_form_factor(q, k);
+    const CornerFormFactor& fb = corner_form_factor(q, l);
+    const double unoccluded = fa.unoccluded + fb.unoccluded;
+    const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
+    Vec3d at = (pos[k] + pos[l]) * 0.5;
+    at += (centroid - at) * 1e-2;  // inside q, as evaluation points are
+    mid[k] = far ? 0.5 * (fa.visible + fb.visible) + visible * (far_form(at) - 0.5 * (far_at[k] + far_at[l]))
+                 : visible * sender_closed_form(at, n);
+  }
+}
+
+double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in,
+                                       std::array<double, 3>& mid) const {
+  const double shot = (reflectance * current_shot_).luminance();
+  in.pushdown_error = in.current_peak = 0;
+  if (!(shot > 0)) return -1;
+  midpoint_form_factors(q, mid);
   double mid_sum = 0;
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const CornerFormFactor& fa = corner_form_factor(q, k);
     const CornerFormFactor& fb = corner_form_factor(q, l);
     const double a = in.current[k].luminance(), b = in.current[l].luminance();
-    const double unoccluded = fa.unoccluded + fb.unoccluded;
-    const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
-    Vec3d mid = (pos[k] + pos[l]) * 0.5;
-    mid += (centroid - mid) * 1e-2;  // inside q, as evaluation points are
-    const double at_mid =
-        far ? 0.5 * (a + b) + shot * visible * (far_form(mid) - 0.5 * (far_at[k] + far_at[l]))
-            : shot * visible * sender_closed_form(mid, n);
+    const double at_mid = shot * mid[k];
     const auto fraction = [](const CornerFormFactor& f) { return f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0; };
     const bool shadow_edge = std::abs(fraction(fa) - fraction(fb)) > 1e-9;
     const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);
     in.pushdown_error = std::max(in.pushdown_error, error);
     in.current_peak = std::max({in.current_peak, a, at_mid});
-    mid_sum += at_mid;
+    mid_sum += mid[k];
   }
-  return mid_sum / (3 * shot);
+  return mid_sum / 3;
+}
+
+std::array<double, 3> Solver::barycentric(ElementId e, const Vec3d& point) const {
+  const Element& el = hierarchy_.element(e);
+  const Vec3d& n = hierarchy_.normal(e);
+  Vec3d c[3];
+  for (int k = 0; k < 3; ++k) c[k] = hierarchy_.position(el.corners[k]);
+  const double area = OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), n);
+  std::array<double, 3> l;
+  for (int k = 0; k < 3; ++k)
+    l[k] = OpenMesh::dot(OpenMesh::cross(c[(k + 1) % 3] - point, c[(k + 2) % 3] - point), n) / area;
+  return l;
+}
+
+Rgb Solver::quadratic(const std::array<Rgb, 6>& nodes, const std::array<double, 3>& l) {
+  Rgb out;
+  for (int k = 0; k < 3; ++k) {
+    out += nodes[k] * (l[k] * (2 * l[k] - 1));
+    out += nodes[3 + k] * (4 * l[k] * l[(k + 1) % 3]);
+  }
+  return out;
 }
 
 Rgb Solver::interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const {
@@ -663,20 +694,27 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
   });
 }
 
-void Solver::push_down(ElementId q, const std::array<Rgb, 3>& delta) {
+void Solver::push_down(ElementId q, const std::array<Rgb, 6>& delta) {
   if (hierarchy_.element(q).is_leaf()) return;
-  for (int k = 0; k < 3; ++k) pending_[q][k] += delta[k];
+  for (int k = 0; k < 6; ++k) pending_[q][k] += delta[k];
 }
 
 void Solver::flush(ElementId q) {
   const Element& el = hierarchy_.element(q);
   if (el.is_leaf()) return;
-  std::array<Rgb, 3>& pending = pending_[q];
-  if (pending[0].is_zero() && pending[1].is_zero() && pending[2].is_zero()) return;
+  std::array<Rgb, 6>& pending = pending_[q];
+  bool zero = true;
+  for (const Rgb& v : pending) zero = zero && v.is_zero();
+  if (zero) return;
   for (ElementId c : el.children) {
     const Element& child = hierarchy_.element(c);
-    std::array<Rgb, 3> delta;
-    for (int k = 0; k < 3; ++k) delta[k] = interpolate(q, pending, hierarchy_.position(child.corners[k]));
+    Vec3d corner[3];
+    for (int k = 0; k < 3; ++k) corner[k] = hierarchy_.position(child.corners[k]);
+    std::array<Rgb, 6> delta;
+    for (int k = 0; k < 3; ++k) {
+      delta[k] = quadratic(pending, barycentric(q, corner[k]));
+      delta[3 + k] = quadratic(pending, barycentric(q, (corner[k] + corner[(k + 1) % 3]) * 0.5));
+    }
     for (int k = 0; k < 3; ++k) value_[c][k] += delta[k];
     push_down(c, delta);
   }
@@ -779,8 +817,29 @@ SolveReport Solver::run() {
   const auto start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   report_.stopped_by = "converged";
+  report_.error_target = options_.error_target;
+  // The error estimate costs a pass over the elements: it is taken when unshot power
+  // has fallen by a tenth since the last look, or every 64 shots.
+  double checked_unshot = 2;
+  std::size_t checked_at = 0;
   while (true) {
     if (unshot_fraction() <= options_.converge) break;
+    if (options_.error_target > 0 && report_.iterations > 0 &&
+        (unshot_fraction() < 0.9 * checked_unshot || report_.iterations >= checked_at + 64)) {
+      checked_unshot = unshot_fraction();
+      checked_at = report_.iterations;
+      report_.estimated_error = estimate_error();
+      if (report_.estimated_error.total() <= options_.error_target) {
+        report_.stopped_by = "error target";
+        break;
+      }
+      // Only the mesh's error is left above the target: shooting on would buy little.
+      const ErrorEstimate& e = report_.estimated_error;
+      if (e.unshot <= 0.1 * options_.error_target || e.unshot <= 0.25 * e.discretisation) {
+        report_.stopped_by = "error floor";
+        break;
+      }
+    }
     if (options_.max_iterations > 0 && report_.iterations >= options_.max_iterations) {
       report_.stopped_by = "iterations";
       break;
@@ -797,6 +856,7 @@ SolveReport Solver::run() {
     if (options_.on_shot) options_.on_shot(report_.iterations, unshot_fraction());
   }
   report_.seconds = elapsed();
+  report_.estimated_error = estimate_error();
   report_.unshot_fraction = unshot_fraction();
   report_.elements = hierarchy_.element_count();
   report_.receivers = scene_.vertex_count();

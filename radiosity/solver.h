@@ -47,6 +47,16 @@ struct RefineSettings {
   // limit may be passed by the closure of the split that reaches it (a few elements).
   std::size_t max_elements = 0;
   std::size_t memory_budget = 0;  // bytes of resident memory of the whole process
+  // Dynamic: push a transfer down to the elements below where it stopped along the
+  // quadratic through its values at the stopping element's corners and edge midpoints
+  // (three more closed forms where elements exist below), instead of linearly from the
+  // corners as the paper does. Linear push-down of a transfer that bends (near its
+  // sender) overshoots at every vertex below, always on the same side, and many such
+  // transfers add up: in a furnace the worst vertex was 17% off (bench/README.md).
+  bool quadratic_pushdown = true;
+  // Dynamic, push-down oracle: where elements exist below q, decide by the push-down
+  // error alone (OracleInputs::refined).
+  bool refined_pushdown = true;
 };
 
 // Resident memory of this process in bytes (Linux /proc; 0 where unknown).
@@ -74,6 +84,21 @@ class Solver {
   Output output() { return output(options_.ambient_display); }
   Output output(bool ambient_display);  // with or without the ambient term, whatever the options
 
+  // The estimated mean relative error of what output() writes now: per leaf element,
+  // area-weighted, over surfaces that reflect, relative to their mean radiosity.
+  //   unshot: the light not yet shot reaches each element as its reflectance times
+  //     Cohen et al.'s ambient radiosity; written with the ambient term
+  //     (SolveOptions::ambient_display) half of it is counted as error (the term is
+  //     right on average, wrong in its distribution), without it all of it.
+  //   discretisation: at every leaf below a patch, the hierarchical surplus at the
+  //     corner its parent's split made: the leaf's value there minus the parent's
+  //     linear interpolation, halved: bisection halves the interpolation error (it
+  //     goes with the element's area), so what is left at the leaf is about the
+  //     surplus there, and the mean of a linear interpolation's error over an element
+  //     is about half its value at an edge's midpoint (2/3 along a parabola). Leaves
+  //     that are whole patches add nothing: no refinement was asked for there.
+  // Measured against the path-traced reference in tests/error_estimate_test.cpp.
+  ErrorEstimate estimate_error();
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
@@ -170,7 +195,9 @@ class Solver {
   // its corners.
   // Returns the mean over q's edge midpoints of the visible form factor (the rule
   // exact for quadratics: q's mean form factor), or -1 when it did not estimate.
-  double estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in) const;
+  // `mid` gets midpoint_form_factors() on the way.
+  double estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in,
+                                 std::array<double, 3>& mid) const;
   // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
   static constexpr double kCentroidWeight = 0.75;
   // estimate_pushdown_error(): distance, in sender radii, from which the midpoint
@@ -181,13 +208,24 @@ class Solver {
   void initialise_new_elements();
   // Values of elements first to count - 1, each from its nearest ancestor before first.
   void initialise_values(ElementId first, std::size_t count);
-  // Push-down: dB given at q's corners reaches every element below q, interpolated
-  // linearly. It is lazy (exact, since interpolation is linear): q keeps the sum as
-  // pending, and flush(q) hands it to q's children when the walk enters them.
-  void push_down(ElementId q, const std::array<Rgb, 3>& delta);
+  // Push-down: dB given at q's corners and edge midpoints reaches every element below
+  // q, interpolated by the quadratic through those six values (RefineSettings::
+  // quadratic_pushdown; linear from the corners otherwise: the midpoints are then the
+  // corners' means). It is lazy (exact, since a quadratic restricted to a child is the
+  // quadratic through the child's six nodes): q keeps the sum as pending, and flush(q)
+  // hands it to q's children when the walk enters them.
+  void push_down(ElementId q, const std::array<Rgb, 6>& delta);
   void flush(ElementId q);
   void flush_all();
   Rgb interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const;
+  std::array<double, 3> barycentric(ElementId e, const Vec3d& point) const;
+  // The quadratic through six node values (corners, then edge midpoints) at barycentric point l.
+  static Rgb quadratic(const std::array<Rgb, 6>& nodes, const std::array<double, 3>& l);
+  // This shot's visible form factor at q's three edge midpoints (edge k runs from corner
+  // k to k + 1): Lambert's closed form there times the mean visible fraction of the
+  // edge's ends (no rays), or, far from the sender, the corners' mean plus the far-field
+  // form's second difference.
+  void midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const;
   // A_q times the mean form factor over q: the share of the sender's power (per unit
   // of its area) that q would receive, before account_transfers() normalises it.
   double element_reach(ElementId q) const;
@@ -228,7 +266,9 @@ class Solver {
   std::vector<Patch> patches_;
   // Per element (GrowArray: see grow_array.h).
   GrowArray<std::array<Rgb, 3>> value_;    // cumulated radiosity at its corners
-  GrowArray<std::array<Rgb, 3>> pending_;  // push-down not yet handed to children
+  // Push-down not yet handed to children: a quadratic on the element, its values at the
+  // corners (0-2) and at the midpoints of edges (k, k + 1) (3-5).
+  GrowArray<std::array<Rgb, 6>> pending_;
   GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
   std::size_t initialised_ = 0;            // elements with values
   // This shot: sender and form factors by (vertex, patch).

@@ -289,7 +289,7 @@ TEST(HostileInput, ScaleAndFarOffsetsGiveTheUnitScaleAnswer) {
   auto absorbed_fraction = [](const Solution& s) {
     return s.report["energy"]["absorbed"][1].get<double>() / s.report["energy"]["emitted"][1].get<double>();
   };
-  const std::string progressive = "--iterations 60", dynamic = "--iterations 60 --method dynamic --max-level 2";
+  const std::string progressive = "--iterations 60 --method progressive", dynamic = "--iterations 60 --method dynamic --max-level 2";
   const Solution unit = run(1, Vec3d(0.0), progressive), unit_dynamic = run(1, Vec3d(0.0), dynamic);
   const std::vector<float> unit_sorted = sorted_green(unit);
   // 1e-8 and 1e20 once lost most of the light through the walls: Embree saw the model

@@ -35,7 +35,12 @@ TEST(SolveCommand, WritesLitMeshAndReport) {
   for (const char* key : {"method", "iterations", "energy_transfers", "patch_element_transfers", "visibility_rays",
                           "elements", "patches", "unshot_fraction", "seconds", "unshot_history"})
     EXPECT_TRUE(j.contains(key)) << key;
-  EXPECT_EQ(j["method"], "progressive");
+  EXPECT_EQ(j["method"], "dynamic");  // the default
+  for (const char* key : {"quality", "error_target", "mean_free_path", "patch_size", "patch_size_rule", "max_level",
+                          "pushdown_error", "pushdown_floor", "memory_budget_mib"})
+    EXPECT_TRUE(j["settings"].contains(key)) << key;
+  EXPECT_EQ(j["settings"]["quality"], "normal");
+  EXPECT_GT(j["estimated_error"]["total"].get<double>(), 0.0);
   EXPECT_EQ(j["iterations"].get<int>(), 40);
   EXPECT_EQ(j["unshot_history"].size(), 40u);
   EXPECT_EQ(j["stopped_by"], "iterations");
@@ -57,7 +62,7 @@ TEST(SolveCommand, FlatSendersOption) {
   test::TempDir dir;
   auto solve = [&](const std::string& name, const std::string& extra) {
     const auto r = test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path(name + ".ply") +
-                                    "' --iterations 200 --report '" + dir.path(name + ".json") + "'" + extra);
+                                    "' --method progressive --iterations 200 --report '" + dir.path(name + ".json") + "'" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return nlohmann::json::parse(test::read_text(dir.path(name + ".json")));
   };
@@ -102,7 +107,8 @@ TEST(SolveCommand, DynamicNeedsFarFewerTransfersThanAdaptive) {
   test::TempDir dir;
   auto transfers = [&](const std::string& method) {
     const auto r = test::run_dynrad("solve '" + test::sample("paper_empty_room_small_source.obj") + "' -o '" +
-                                    dir.path(method + ".ply") + "' --patch-size 1.1 --max-level 2 --iterations 100 --no-simplify --method " +
+                                    dir.path(method + ".ply") + "' --patch-size 1.1 --max-level 2 --iterations 100 --no-simplify --pushdown-error 0.04 "
+                                    "--pushdown-floor 0.02 --method " +
                                     method + " --report '" + dir.path(method + ".json") + "'");
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return nlohmann::json::parse(test::read_text(dir.path(method + ".json")));

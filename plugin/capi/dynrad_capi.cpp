@@ -8,6 +8,7 @@
 #include "mesh/import.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/settings.h"
 #include "radiosity/solver.h"
 #include "radiosity/tonemap.h"
 
@@ -30,9 +31,15 @@ struct dynrad_scene {
 };
 
 struct dynrad_options {
+  dynrad_options() {
+    refine.method = dynrad::rad::Method::dynamic;  // as `dynrad solve`
+    solve.ambient_display = true;
+  }
   dynrad::rad::SolveOptions solve;
   dynrad::rad::RefineSettings refine;
-  double patch_size = 0;  // 0: default for the scene
+  // What the caller set of the settings `dynrad solve` chooses from the model
+  // (radiosity/settings.h); the rest is chosen at the solve.
+  dynrad::rad::SettingsRequest request;
   double exposure = 0;    // 0: automatic
   bool simplify = true;   // merge flat regions before patching, as `dynrad solve`
   bool imprint = true;    // imprint where surfaces meet, as `dynrad solve`
@@ -192,19 +199,21 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   if (!mesh) mesh = build_mesh(scene.soup, options.simplify, options.imprint);
 
   // As `dynrad solve` does (plugin/cli/cmd_solve.cpp), so that both give one answer.
-  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(*mesh);
+  rad::RefineSettings refine = options.refine;
+  rad::SolveOptions solve_options = options.solve;
+  const rad::AppliedSettings applied = rad::apply_settings(*mesh, options.request, refine, solve_options);
+  const double patch_size = applied.patch_size;
   const PatchingReport patching = make_patches(*mesh, patch_size);
   RefinementOptions refinement;
   refinement.min_area = 1e-6 * patch_size * patch_size;
   ElementHierarchy hierarchy(*mesh, refinement);
 
-  rad::SolveOptions solve_options = options.solve;
   bool callback_stop = false;
   solve_options.should_stop = [&] { return callback_stop || (cancel && *cancel != 0); };
   solve_options.on_shot = [&](std::size_t shot, double unshot) {
     if (progress && progress(shot, unshot, user) != 0) callback_stop = true;
   };
-  rad::Solver solver(*mesh, hierarchy, solve_options, options.refine);
+  rad::Solver solver(*mesh, hierarchy, solve_options, refine);
   const rad::SolveReport report = solver.run();
   const rad::Solver::Output output = solver.output();
 
@@ -248,6 +257,7 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
     r.escaped[c] = report.energy.escaped[c];
   }
   r.stopped_by = stop_reason(report.stopped_by);
+  r.estimated_error = report.estimated_error.total();
   return result.release();
 }
 
@@ -349,21 +359,21 @@ dynrad_status dynrad_options_set_method(dynrad_options* options, const char* met
 dynrad_status dynrad_options_set_max_level(dynrad_options* options, int max_level) {
   const dynrad_status s =
       set_option(options, max_level >= 0 && max_level <= 12, "dynrad_options_set_max_level: must be in 0..12.");
-  if (s == DYNRAD_OK) options->refine.max_level = max_level;
+  if (s == DYNRAD_OK) options->request.max_level = max_level;
   return s;
 }
 
 dynrad_status dynrad_options_set_patch_size(dynrad_options* options, double patch_size) {
   const dynrad_status s = set_option(options, std::isfinite(patch_size) && patch_size >= 0,
                                      "dynrad_options_set_patch_size: must be a finite number >= 0 (0: default).");
-  if (s == DYNRAD_OK) options->patch_size = patch_size;
+  if (s == DYNRAD_OK) options->request.patch_size = patch_size;
   return s;
 }
 
 dynrad_status dynrad_options_set_converge(dynrad_options* options, double converge) {
   const dynrad_status s =
       set_option(options, converge >= 0 && converge < 1, "dynrad_options_set_converge: must be in [0, 1).");
-  if (s == DYNRAD_OK) options->solve.converge = converge;
+  if (s == DYNRAD_OK) options->request.converge = converge;
   return s;
 }
 
@@ -435,8 +445,24 @@ dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const
   s = set_option(options, target != nullptr,
                  "dynrad_options_set_oracle_threshold: unknown name; available: cumulated_gradient, current_gradient, "
                  "current_ratio, pushdown_error, pushdown_floor, pushdown_ambient.");
-  if (s == DYNRAD_OK) *target = value;
+  if (s == DYNRAD_OK) {
+    *target = value;
+    if (n == "pushdown_error") options->request.pushdown = value;
+    if (n == "pushdown_floor") options->request.pushdown_floor = value;
+  }
   return s;
+}
+
+dynrad_status dynrad_options_set_quality(dynrad_options* options, const char* quality) {
+  return guarded([&] {
+    require(options && quality, "dynrad_options_set_quality: options or quality is NULL.");
+    try {
+      options->request.quality = rad::parse_quality(quality);
+    } catch (const std::invalid_argument& e) {
+      fail(DYNRAD_INVALID_ARGUMENT, std::string("dynrad_options_set_quality: ") + e.what());
+    }
+    return DYNRAD_OK;
+  });
 }
 
 dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements) {

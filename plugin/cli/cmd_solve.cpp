@@ -11,6 +11,7 @@
 #include "plugin/cli/commands.h"
 #include "plugin/cli/png.h"
 #include "radiosity/preview.h"
+#include "radiosity/settings.h"
 #include "radiosity/solver.h"
 #include "radiosity/tonemap.h"
 
@@ -36,13 +37,16 @@ struct SolveCliOptions {
   std::string report;
   std::string preview;
   int preview_width = 800;
-  std::string method = "progressive";
-  double patch_size = 0;  // 0: default for the scene
-  int max_level = 3;
+  std::string method = "dynamic";
+  std::string quality = "normal";
+  double patch_size = 0;  // 0: chosen from the model (radiosity/settings.h)
+  int max_level = -1;     // -1: the quality's
+  double converge = -1;   // -1: stop by the quality's error target (dynamic), or at 1% unshot
+  bool ambient = true;
   double threshold = -1;  // -1: the method's default
   std::string oracle = "pushdown";
   std::size_t max_elements = 0;
-  double memory_budget_mb = 0;
+  double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
@@ -58,19 +62,36 @@ extern "C" void on_stop_signal(int signal_number) {
   std::signal(signal_number, SIG_DFL);
 }
 
-class ProgressBar {
+// Progress on stderr. On a terminal, a bar redrawn in place (at most 10 times a
+// second); otherwise (a log file, a pipe, a build system) a line every 5 seconds, so a
+// long solve is never silent. Neither with --quiet.
+class Progress {
  public:
-  explicit ProgressBar(double converge) : enabled_(::isatty(STDERR_FILENO)), converge_(converge) {}
-  void update(std::size_t shot, double unshot) {
-    if (!enabled_) return;
+  explicit Progress(double converge)
+      : terminal_(::isatty(STDERR_FILENO)), quiet_(!spdlog::should_log(spdlog::level::info)), converge_(converge),
+        start_(std::chrono::steady_clock::now()), last_(start_) {}
+  // `error` is the estimated error of the values so far (negative: not estimated yet).
+  void update(std::size_t shot, double unshot, double error, std::size_t elements) {
+    if (quiet_) return;
     const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const std::string error_text = error >= 0 ? fmt::format("estimated error {:.2f}%, ", 100 * error) : "";
+    if (!terminal_) {
+      if (now - last_ < std::chrono::seconds(5)) return;
+      last_ = now;
+      std::fprintf(stderr, "progress: shot %zu, %sunshot %.2f%%, %zu elements, %.0f s\n", shot, error_text.c_str(),
+                   100 * unshot, elements, elapsed);
+      std::fflush(stderr);
+      return;
+    }
     if (shot > 1 && now - last_ < std::chrono::milliseconds(100)) return;
     last_ = now;
     // Unshot power falls roughly geometrically: progress on a log scale.
     const double done = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(converge_), 0.0, 1.0);
     const int width = 30, filled = static_cast<int>(done * width);
-    std::fprintf(stderr, "\r  [%s%s] shot %zu, unshot %.2f%%   ", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '-').c_str(), shot, 100 * unshot);
+    std::fprintf(stderr, "\r  [%s%s] shot %zu, %sunshot %.2f%%, %zu elements, %.0f s   ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '-').c_str(), shot, error_text.c_str(),
+                 100 * unshot, elements, elapsed);
     std::fflush(stderr);
     drawn_ = true;
   }
@@ -79,10 +100,10 @@ class ProgressBar {
   }
 
  private:
-  bool enabled_;
+  bool terminal_, quiet_;
   double converge_;
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point last_{};
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
@@ -94,7 +115,12 @@ int run_solve(SolveCliOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw InputError("--method", 0, e.what());
   }
-  refine.max_level = options.max_level;
+  rad::Quality quality;
+  try {
+    quality = rad::parse_quality(options.quality);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--quality", 0, e.what());
+  }
   rad::OracleThresholds& oracle = refine.dynamic;
   if (options.threshold > 0) {
     refine.adaptive_threshold = options.threshold;
@@ -111,11 +137,9 @@ int run_solve(SolveCliOptions& options) {
   }
   if (options.current_gradient >= 0) oracle.current_gradient = options.current_gradient;
   if (options.current_ratio >= 0) oracle.current_ratio = options.current_ratio;
-  if (options.pushdown >= 0) oracle.pushdown = options.pushdown;
-  if (options.pushdown_floor >= 0) oracle.pushdown_floor = options.pushdown_floor;
   if (options.no_pushdown_ambient) oracle.pushdown_ambient = false;
   refine.max_elements = options.max_elements;
-  refine.memory_budget = static_cast<std::size_t>(options.memory_budget_mb * 1024 * 1024);
+  options.solve.ambient_display = options.ambient;
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
   if (!options.preview.empty()) check_output_writable(options.preview);
@@ -136,24 +160,47 @@ int run_solve(SolveCliOptions& options) {
     throw InputError(options.load.input, 0,
                      "no face emits light, so everything would be black. Give a material an emission: Ke in the "
                      ".mtl file, or \"emission\" in a scene file's materials.");
-  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
+  // Settings from the model and the quality (radiosity/settings.h); every option given
+  // overrides.
+  rad::SettingsRequest request;
+  request.quality = quality;
+  request.patch_size = options.patch_size;
+  request.max_level = options.max_level;
+  request.converge = options.converge;
+  request.pushdown = options.pushdown;
+  request.pushdown_floor = options.pushdown_floor;
+  request.memory_budget_mib = options.memory_budget_mb;
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options.solve);
+  const rad::ChosenSettings& chosen = applied.chosen;
+  const double patch_size = applied.patch_size;
+  const std::string& patch_rule = applied.patch_size_rule;
   const PatchingReport patching = make_patches(mesh, patch_size);
   RefinementOptions refinement;
   // No element below a millionth of the patch area: far below any visible detail.
   refinement.min_area = 1e-6 * patch_size * patch_size;
   ElementHierarchy hierarchy(mesh, refinement);
-  spdlog::info("{}: {} triangles, {} patches (patch size {:.4g})", options.load.input, patching.faces_before,
-               patching.patches, patch_size);
+  spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", options.load.input, patching.faces_before,
+               patching.patches, patch_size, patch_rule,
+               options.solve.error_target > 0
+                   ? fmt::format("quality {}: stop at {:.2g}% estimated error", rad::quality_name(quality),
+                                 100 * options.solve.error_target)
+                   : fmt::format("stop at {:.2g}% unshot", 100 * options.solve.converge));
 
-  ProgressBar bar(options.solve.converge);
+  Progress progress(options.solve.error_target > 0 ? options.solve.error_target : options.solve.converge);
   options.solve.should_stop = [] { return g_stop_requested.load(); };
-  options.solve.on_shot = [&bar](std::size_t shot, double unshot) { bar.update(shot, unshot); };
+  rad::Solver* running = nullptr;
+  options.solve.on_shot = [&](std::size_t shot, double unshot) {
+    const rad::SolveReport& so_far = running->report();
+    const double error = so_far.estimated_error.total() > 0 ? so_far.estimated_error.total() : -1;
+    progress.update(shot, unshot, error, hierarchy.element_count());
+  };
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   rad::Solver solver(mesh, hierarchy, options.solve, refine);
+  running = &solver;
   const rad::SolveReport report = solver.run();
-  bar.finish();
+  progress.finish();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
 
@@ -177,8 +224,11 @@ int run_solve(SolveCliOptions& options) {
                  camera.eye[2]);
   }
   const auto& e = report.energy;
-  spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, {} visibility rays; exposure {:.4g}", report.iterations,
-               report.seconds, report.stopped_by, 100 * report.unshot_fraction, report.visibility_rays, exposure);
+  spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
+               "mesh), {} visibility rays; exposure {:.4g}",
+               report.iterations, report.seconds, report.stopped_by, 100 * report.unshot_fraction,
+               100 * report.estimated_error.total(), 100 * report.estimated_error.unshot,
+               100 * report.estimated_error.discretisation, report.visibility_rays, exposure);
   spdlog::info("energy: emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
                e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
                e.escaped.r + e.escaped.g + e.escaped.b, e.unshot.r + e.unshot.g + e.unshot.b);
@@ -198,7 +248,7 @@ int run_solve(SolveCliOptions& options) {
     j["elements"] = report.elements;
     j["patches"] = report.patches;
     j["receivers"] = report.receivers;
-    j["max_level"] = options.max_level;
+    j["max_level"] = refine.max_level;
     j["unshot_fraction"] = report.unshot_fraction;
     j["seconds"] = report.seconds;
     j["imprint"] = {{"enabled", cleanup.imprint},
@@ -218,13 +268,27 @@ int run_solve(SolveCliOptions& options) {
     j["shaped_senders"] = options.solve.shaped_senders;
     j["exposure"] = exposure;
     j["patch_size"] = patch_size;
+    j["settings"] = {{"quality", rad::quality_name(quality)},
+                     {"error_target", options.solve.error_target},
+                     {"mean_free_path", chosen.mean_free_path},
+                     {"patch_size", patch_size},
+                     {"patch_size_rule", patch_rule},
+                     {"max_level", refine.max_level},
+                     {"pushdown_error", oracle.pushdown},
+                     {"pushdown_floor", oracle.pushdown_floor},
+                     {"cumulated_gradient", oracle.pushdown_cumulated_gradient},
+                     {"memory_budget_mib", static_cast<double>(refine.memory_budget) / (1024.0 * 1024.0)},
+                     {"converge", options.solve.converge}};
+    j["estimated_error"] = {{"total", report.estimated_error.total()},
+                            {"unshot", report.estimated_error.unshot},
+                            {"discretisation", report.estimated_error.discretisation}};
     j["energy"] = {{"emitted", rgb_json(e.emitted)},
                    {"absorbed", rgb_json(e.absorbed)},
                    {"escaped", rgb_json(e.escaped)},
                    {"unshot", rgb_json(e.unshot)}};
     j["options"] = {{"converge", options.solve.converge},
                     {"max_elements", options.max_elements},
-                    {"memory_budget_mib", options.memory_budget_mb},
+                    {"memory_budget_mib", static_cast<double>(refine.memory_budget) / (1024.0 * 1024.0)},
                     {"iterations", options.solve.max_iterations},
                     {"time_limit", options.solve.time_limit},
                     {"threads", options.solve.threads},
@@ -241,7 +305,13 @@ int run_solve(SolveCliOptions& options) {
                  100 * report.unshot_fraction);
     return kExitInterrupted;
   }
-  if (report.stopped_by != "converged")
+  if (report.stopped_by == "error floor")
+    spdlog::warn("the estimated error is {:.2f}%, above the target {:.2f}%, and what is left is the mesh's ({:.2f}%): "
+                 "shooting longer would not help. Try --quality high, or a smaller --patch-size or a larger "
+                 "--max-level.",
+                 100 * report.estimated_error.total(), 100 * options.solve.error_target,
+                 100 * report.estimated_error.discretisation);
+  else if (report.stopped_by != "converged" && report.stopped_by != "error target")
     spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", report.stopped_by,
                  100 * report.unshot_fraction, 100 * options.solve.converge);
   return kExitOk;
@@ -255,13 +325,19 @@ Command add_solve_command(CLI::App& app) {
   add_load_options(*command, options->load);
   add_simplify_flag(*command, options->load);
   command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
+  command->add_option("--quality", options->quality,
+                      "draft, normal or high: the estimated error to stop at (2%, 0.5%, 0.2%) and the patches, levels "
+                      "and oracle that reach it; options below override")
+      ->capture_default_str();
   command->add_option("--method", options->method, "progressive, adaptive (Cohen et al. 1986) or dynamic (Dubuis & Bieri)")
       ->capture_default_str();
   command->add_option("--patch-size", options->patch_size,
-                      "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
+                      "Longest patch edge, model units (default: from the model's mean free path and the quality; "
+                      "progressive and adaptive: a tenth of the bounding-box diagonal)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--max-level", options->max_level, "1->4 splits allowed below a patch (the paper's level L is --max-level L-1)")
-      ->capture_default_str()
+  command->add_option("--max-level", options->max_level,
+                      "1->4 splits allowed below a patch (the paper's level L is --max-level L-1; default: the quality's, "
+                      "3 for progressive and adaptive)")
       ->check(CLI::Range(0, 12));
   command->add_option("--threshold", options->threshold,
                       "Adaptive's gradient threshold (default 0.25); also all three of the paper oracle's")
@@ -289,8 +365,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--memory-budget", options->memory_budget_mb,
                       "Stop refining (and go on solving) once the process uses this many MiB (0: no limit)")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--converge", options->solve.converge, "Stop when unshot power falls below this fraction of emitted")
-      ->capture_default_str()
+  command->add_option("--converge", options->converge,
+                      "Stop when unshot power falls below this fraction of emitted, instead of by estimated error "
+                      "(progressive and adaptive: 0.01)")
       ->check(CLI::Range(0.0, 1.0));
   command->add_option("--iterations", options->solve.max_iterations, "Stop after this many shots (0: no limit)");
   command->add_option("--time-limit", options->solve.time_limit, "Stop after this many seconds, writing what there is")
@@ -316,9 +393,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
                    "corners and edge midpoints");
-  command->add_flag("--ambient", options->solve.ambient_display,
-                   "Add the ambient estimate of light not yet shot to the written values (Cohen et al. 1988); "
-                   "useful with --time-limit");
+  command->add_flag("--ambient,!--no-ambient", options->ambient,
+                   "Add (the default) or leave out the ambient estimate of light not yet shot in the written values "
+                   "(Cohen et al. 1988)");
   command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
   command->add_option("--preview", options->preview, "Also render a PNG picture of the result");
   command->add_option("--preview-width", options->preview_width, "Width of the preview in pixels")

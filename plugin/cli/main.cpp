@@ -42,8 +42,11 @@ int main(int argc, char** argv) {
   CLI::App app{"dynrad: radiosity lighting for meshes (Dynamic Subdivision, Dubuis & Bieri)"};
   app.set_version_flag("--version", std::string("dynrad ") + DYNRAD_VERSION);
   app.require_subcommand(1);
+  app.fallthrough();  // -v and -q also after the subcommand
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
+  bool quiet = false;
+  app.add_flag("-q,--quiet", quiet, "Print only warnings and errors: no progress, no summary");
   std::map<CLI::App*, cli::Command> commands;
   for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command, cli::add_diff_command,
                     cli::add_plot_command, cli::add_probe_command}) {
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
     return code == 0 ? cli::kExitOk : cli::kExitBadInput;
   }
   if (verbose) spdlog::set_level(spdlog::level::debug);
+  if (quiet) spdlog::set_level(spdlog::level::warn);
   try {
     for (auto* sub : app.get_subcommands())
       if (commands.count(sub)) return commands[sub]();

@@ -73,14 +73,27 @@ class DynradSettings(bpy.types.PropertyGroup):
         ],
         default="dynamic",
     )
-    max_level: IntProperty(name="Max level", description="1 -> 4 splits allowed below a patch", default=3, min=0,
-                           max=12)
+    quality: EnumProperty(
+        name="Quality",
+        items=[
+            ("draft", "Draft", "Stop at about 2% estimated error"),
+            ("normal", "Normal", "Stop at about 0.5% estimated error (the default)"),
+            ("high", "High", "Stop at about 0.2% estimated error"),
+        ],
+        default="normal",
+    )
+    max_level: IntProperty(name="Max level",
+                           description="1 -> 4 splits allowed below a patch (-1: the quality's; 3 for progressive "
+                                       "and adaptive)", default=-1, min=-1, max=12)
     patch_size: FloatProperty(
         name="Patch size",
-        description="Longest patch edge in scene units (0: a tenth of the bounding-box diagonal)",
+        description="Longest patch edge in scene units (0: from the model and the quality; progressive and "
+                    "adaptive: a tenth of the bounding-box diagonal)",
         default=0.0, min=0.0, unit="LENGTH")
-    converge: FloatProperty(name="Converge", description="Stop when unshot power is below this fraction of emitted",
-                            default=0.01, min=0.0, max=0.999, precision=4)
+    converge: FloatProperty(name="Converge",
+                            description="Stop when unshot power is below this fraction of emitted (0: stop by the "
+                                        "quality's error target; progressive and adaptive: 0.01)",
+                            default=0.0, min=0.0, max=0.999, precision=4)
     iterations: IntProperty(name="Shots", description="Stop after this many shots (0: no limit)", default=0, min=0)
     time_limit: FloatProperty(name="Time limit", description="Stop after this many seconds (0: no limit)",
                               default=0.0, min=0.0, unit="TIME_ABSOLUTE")
@@ -90,7 +103,7 @@ class DynradSettings(bpy.types.PropertyGroup):
         name="Ambient term",
         description="Add the estimate of light not yet shot to the result, so that a solve stopped early "
                     "(Esc, a time limit) looks close to the converged one",
-        default=False)
+        default=True)
     simplify: BoolProperty(
         name="Merge flat regions",
         description="Merge the triangles of flat regions before patching (lossless for the light; "
@@ -114,12 +127,12 @@ class DynradSettings(bpy.types.PropertyGroup):
     pushdown_error: FloatProperty(
         name="Push-down error",
         description="Largest error, as a fraction of a transfer, left where refinement stops (smaller: finer "
-                    "and slower)",
-        default=0.04, min=0.0, max=1.0, precision=3)
+                    "and slower; 0: the quality's)",
+        default=0.0, min=0.0, max=1.0, precision=3)
     pushdown_floor: FloatProperty(
         name="Push-down floor",
-        description="Transfers below this fraction of an element's brightness do not refine it",
-        default=0.02, min=0.0, max=1.0, precision=3)
+        description="Transfers below this fraction of an element's brightness do not refine it (0: the quality's)",
+        default=0.0, min=0.0, max=1.0, precision=3)
     max_elements: IntProperty(
         name="Max elements", description="Stop refining at this many elements (0: no limit)", default=0, min=0)
     overshoot: FloatProperty(
@@ -134,8 +147,12 @@ class DynradSettings(bpy.types.PropertyGroup):
     last_report: StringProperty(name="Last report", default="")
 
     def options(self):
-        return {
+        # Left out where the quality chooses (as `dynrad solve` without the option).
+        chosen = {"max_level": self.max_level < 0, "converge": self.converge == 0,
+                  "pushdown_error": self.pushdown_error == 0, "pushdown_floor": self.pushdown_floor == 0}
+        options = {
             "method": self.method,
+            "quality": self.quality,
             "max_level": self.max_level,
             "patch_size": self.patch_size,
             "converge": self.converge,
@@ -153,6 +170,7 @@ class DynradSettings(bpy.types.PropertyGroup):
             "overshoot": self.overshoot,
             "shaped_senders": int(self.shaped_senders),
         }
+        return {name: value for name, value in options.items() if not chosen.get(name, False)}
 
 
 def load_library(context):
@@ -405,7 +423,7 @@ class DYNRAD_PT_panel(bpy.types.Panel):
     def draw(self, context):
         settings = context.scene.dynrad
         layout = self.layout
-        for name in ("method", "max_level", "patch_size", "converge", "ambient", "simplify"):
+        for name in ("quality", "method", "max_level", "patch_size", "converge", "ambient", "simplify"):
             layout.prop(settings, name)
         if settings.method != "progressive":
             box = layout.box()

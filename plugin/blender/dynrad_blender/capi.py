@@ -57,6 +57,7 @@ class Report(ctypes.Structure):
         ("absorbed", ctypes.c_double * 3),
         ("escaped", ctypes.c_double * 3),
         ("stopped_by", ctypes.c_int),
+        ("estimated_error", ctypes.c_double),
     ]
 
 
@@ -130,6 +131,7 @@ class Library:
             "dynrad_options_create": (status, [ctypes.POINTER(handle)]),
             "dynrad_options_destroy": (None, [handle]),
             "dynrad_options_set_method": (status, [handle, ctypes.c_char_p]),
+            "dynrad_options_set_quality": (status, [handle, ctypes.c_char_p]),
             "dynrad_options_set_max_level": (status, [handle, ctypes.c_int]),
             "dynrad_options_set_patch_size": (status, [handle, ctypes.c_double]),
             "dynrad_options_set_converge": (status, [handle, ctypes.c_double]),
@@ -233,7 +235,7 @@ def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials,
 
     positions: flat x y z sequence; polygon_sizes, polygon_indices, polygon_materials as
     in dynrad_scene_create; materials: (name, reflectance rgb, emission rgb) tuples;
-    options: dict of setter names (dynrad_options_set_NAME: method, max_level, patch_size,
+    options: dict of setter names (dynrad_options_set_NAME: method, quality, max_level, patch_size,
     converge, iterations, time_limit, threads, seed, threshold, oracle, max_elements,
     overshoot, negligible_share, shaped_senders, ambient, simplify, exposure) or names of
     dynrad_options_set_oracle_threshold (ORACLE_THRESHOLDS), applied in the dict's order

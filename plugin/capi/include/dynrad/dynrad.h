@@ -103,13 +103,20 @@ typedef struct dynrad_options dynrad_options;
 
 DYNRAD_API dynrad_status dynrad_options_create(dynrad_options** out_options);
 DYNRAD_API void dynrad_options_destroy(dynrad_options* options);
-/* "progressive" (default), "adaptive" or "dynamic". */
+/* "dynamic" (default), "progressive" or "adaptive". */
 DYNRAD_API dynrad_status dynrad_options_set_method(dynrad_options* options, const char* method);
-/* Paper levels (1 -> 4 splits) allowed below a patch, 0..12; default 3. */
+/* "draft", "normal" (default) or "high": as `dynrad solve --quality`, the estimated error
+ * to stop at and the patches, levels and oracle that reach it, chosen from the model;
+ * the setters below override. */
+DYNRAD_API dynrad_status dynrad_options_set_quality(dynrad_options* options, const char* quality);
+/* Paper levels (1 -> 4 splits) allowed below a patch, 0..12; default: the quality's
+ * (dynamic), 3 (progressive, adaptive). */
 DYNRAD_API dynrad_status dynrad_options_set_max_level(dynrad_options* options, int max_level);
-/* Longest patch edge in model units; 0 (default): a tenth of the bounding-box diagonal. */
+/* Longest patch edge in model units; 0 (default): from the model's mean free path and the
+ * quality (dynamic), a tenth of the bounding-box diagonal (progressive, adaptive). */
 DYNRAD_API dynrad_status dynrad_options_set_patch_size(dynrad_options* options, double patch_size);
-/* Stop when unshot power is below this fraction of emitted power, in [0, 1); default 0.01. */
+/* Stop when unshot power is below this fraction of emitted power, in [0, 1), instead of
+ * by the quality's error target; default: the error target (dynamic), 0.01 (others). */
 DYNRAD_API dynrad_status dynrad_options_set_converge(dynrad_options* options, double converge);
 /* Stop after this many shots; 0 (default): no limit. */
 DYNRAD_API dynrad_status dynrad_options_set_iterations(dynrad_options* options, uint64_t iterations);
@@ -129,9 +136,9 @@ DYNRAD_API dynrad_status dynrad_options_set_oracle(dynrad_options* options, cons
 DYNRAD_API dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value);
 /* Stop refining once the element tree holds this many elements; 0 (default): no limit. */
 DYNRAD_API dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements);
-/* Add the ambient estimate of light not yet shot to the result's values (nonzero: on;
- * default off): an early stop (a cancel, a time limit) then shows close to the converged
- * picture. Output only; the solve is the same. */
+/* Add the ambient estimate of light not yet shot to the result's values (nonzero: on,
+ * the default, as `dynrad solve`): an early stop (a cancel, a time limit) then shows close
+ * to the converged picture. Output only; the solve is the same. */
 DYNRAD_API dynrad_status dynrad_options_set_ambient(dynrad_options* options, int on);
 /* Over-relax each shot by this factor, in (0, 2); 1 (default) is plain progressive
  * refinement, 1.3 needs fewer shots for a given accuracy. */
@@ -192,7 +199,7 @@ DYNRAD_API dynrad_status dynrad_result_radiosity(const dynrad_result* result, fl
 DYNRAD_API dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity);
 
 typedef enum dynrad_stop_reason {
-  DYNRAD_STOP_CONVERGED = 0, /* unshot power fell below the converge fraction */
+  DYNRAD_STOP_CONVERGED = 0, /* the error target (or the converge fraction) was reached */
   DYNRAD_STOP_ITERATIONS = 1,
   DYNRAD_STOP_TIME_LIMIT = 2,
   DYNRAD_STOP_CANCELLED = 3 /* progress callback or cancel flag */
@@ -213,6 +220,7 @@ typedef struct dynrad_report {
   double absorbed[3];
   double escaped[3]; /* left through openings */
   int stopped_by;    /* a dynrad_stop_reason */
+  double estimated_error; /* estimated mean relative error of the values (README, "The report") */
 } dynrad_report;
 
 DYNRAD_API dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report);

@@ -1,0 +1,40 @@
+// Solver::estimate_error (see solver.h).
+#include "radiosity/solver.h"
+
+#include <cmath>
+
+namespace dynrad::rad {
+
+ErrorEstimate Solver::estimate_error() {
+  flush_all();  // every leaf holds what was pushed down above it
+  const Rgb ambient_now = ambient();
+  const double unshot_weight = options_.ambient_display ? 0.5 : 1.0;
+  double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
+  for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
+    const Element& el = hierarchy_.element(e);
+    if (!el.is_leaf()) continue;
+    const Patch& patch = patches_[el.patch];
+    if (!(patch.reflectance.luminance() > 0)) continue;  // its value is its emission, exact
+    const double ambient_here = (patch.reflectance * ambient_now).luminance();
+    const auto& v = value_[e];
+    const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
+    radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
+    unshot_area += el.area * ambient_here * unshot_weight;
+    if (el.parent == kNoElement) continue;
+    const Element& parent = hierarchy_.element(el.parent);
+    for (int k = 0; k < 3; ++k) {
+      const VertexHandle c = el.corners[k];
+      if (c == parent.corners[0] || c == parent.corners[1] || c == parent.corners[2]) continue;
+      const Rgb interpolated = interpolate(el.parent, value_[el.parent], hierarchy_.position(c));
+      surplus_area += el.area * std::abs(v[k].luminance() - interpolated.luminance());
+    }
+  }
+  ErrorEstimate out;
+  if (radiosity_area > 0) {
+    out.unshot = unshot_area / radiosity_area;
+    out.discretisation = 0.5 * surplus_area / radiosity_area;
+  }
+  return out;
+}
+
+}  // namespace dynrad::rad
