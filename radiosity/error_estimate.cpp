@@ -8,7 +8,7 @@ namespace dynrad::rad {
 ErrorEstimate Solver::estimate_error() {
   flush_all();  // every leaf holds what was pushed down above it
   const Rgb ambient_now = ambient();
-  const double unshot_weight = options_.ambient_display ? 0.5 : 1.0;
+  const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
   double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
   for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
     const Element& el = hierarchy_.element(e);

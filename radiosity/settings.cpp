@@ -31,7 +31,7 @@ QualityPreset quality_preset(Quality quality) {
   QualityPreset p;
   switch (quality) {
     case Quality::draft:
-      p.error_target = 0.02;
+      p.error_target = 0.03;
       p.patch_per_free_path = 1.0;
       p.max_level = 2;
       p.pushdown = 0.04;
@@ -40,7 +40,7 @@ QualityPreset quality_preset(Quality quality) {
     case Quality::normal:
       break;  // the struct's defaults
     case Quality::high:
-      p.error_target = 0.002;
+      p.error_target = 0.003;
       p.patch_per_free_path = 0.5;
       p.max_level = 3;
       p.pushdown = 0.01;

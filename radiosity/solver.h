@@ -87,9 +87,11 @@ class Solver {
   // The estimated mean relative error of what output() writes now: per leaf element,
   // area-weighted, over surfaces that reflect, relative to their mean radiosity.
   //   unshot: the light not yet shot reaches each element as its reflectance times
-  //     Cohen et al.'s ambient radiosity; written with the ambient term
-  //     (SolveOptions::ambient_display) half of it is counted as error (the term is
-  //     right on average, wrong in its distribution), without it all of it.
+  //     Cohen et al.'s ambient radiosity. Written without the ambient term, all of it
+  //     is missing (on the 1990 room at 2% unshot: 3.2% estimated, 3.3% measured);
+  //     with it (SolveOptions::ambient_display), a quarter of it is counted: the term
+  //     is right on average and wrong in its distribution, and on the 1990 room it
+  //     removes 80-90% of the unshot light's error (bench/README.md).
   //   discretisation: at every leaf below a patch, the hierarchical surplus at the
   //     corner its parent's split made: the leaf's value there minus the parent's
   //     linear interpolation, halved: bisection halves the interpolation error (it

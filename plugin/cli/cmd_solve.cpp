@@ -326,7 +326,7 @@ Command add_solve_command(CLI::App& app) {
   add_simplify_flag(*command, options->load);
   command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
   command->add_option("--quality", options->quality,
-                      "draft, normal or high: the estimated error to stop at (2%, 0.5%, 0.2%) and the patches, levels "
+                      "draft, normal or high: the estimated error to stop at (3%, 1%, 0.3%) and the patches, levels "
                       "and oracle that reach it; options below override")
       ->capture_default_str();
   command->add_option("--method", options->method, "progressive, adaptive (Cohen et al. 1986) or dynamic (Dubuis & Bieri)")

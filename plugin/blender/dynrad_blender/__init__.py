@@ -76,9 +76,9 @@ class DynradSettings(bpy.types.PropertyGroup):
     quality: EnumProperty(
         name="Quality",
         items=[
-            ("draft", "Draft", "Stop at about 2% estimated error"),
-            ("normal", "Normal", "Stop at about 0.5% estimated error (the default)"),
-            ("high", "High", "Stop at about 0.2% estimated error"),
+            ("draft", "Draft", "Stop at about 3% estimated error"),
+            ("normal", "Normal", "Stop at about 1% estimated error (the default)"),
+            ("high", "High", "Stop at about 0.3% estimated error"),
         ],
         default="normal",
     )
