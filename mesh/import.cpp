@@ -3,19 +3,20 @@
 #include "mesh/error.h"
 #include "mesh/io_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace dynrad {
 namespace detail {
-PolygonSoup read_obj(const std::string& path);
-PolygonSoup read_openmesh(const std::string& path);
+PolygonSoup read_obj(const std::string& path, const ReadOptions& options);
+PolygonSoup read_openmesh(const std::string& path, const ReadOptions& options);
 }  // namespace detail
 
-PolygonSoup read_model(const std::string& path) {
+PolygonSoup read_model(const std::string& path, const ReadOptions& options) {
   const std::string ext = detail::extension_of(path);
-  if (ext == ".obj") return detail::read_obj(path);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return detail::read_openmesh(path);
+  if (ext == ".obj") return detail::read_obj(path, options);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return detail::read_openmesh(path, options);
   throw InputError(path, 0,
                    "unsupported file type '" + ext + "'. dynrad reads .obj (with .mtl), .ply, .off, .stl and "
                    ".json scene files.");
@@ -44,21 +45,44 @@ void check_material(const Material& m, const std::string& where) {
     throw InputError(where, 0, who + ": emission " + format_rgb(m.emission) + " must not be negative.");
 }
 
-PolygonSoup read_input(const std::string& path) {
-  PolygonSoup soup = detail::extension_of(path) == ".json" ? read_scene(path) : read_model(path);
+void accept_material(Material& m, const std::string& where, const ReadOptions& options,
+                     std::vector<std::string>& warnings) {
+  if (!options.strict && m.reflectance.is_finite() && m.reflectance.max_channel() >= 1.0) {
+    const Rgb given = m.reflectance;
+    m.reflectance =
+        Rgb(std::min(given.r, kMaxReflectance), std::min(given.g, kMaxReflectance), std::min(given.b, kMaxReflectance));
+    const std::string who = "material '" + m.name + "'" + (m.origin.empty() ? "" : " (" + m.origin + ")");
+    warnings.push_back(who + ": reflectance " + format_rgb(given) +
+                       " is 1 or more, but no surface reflects more light than it receives; lowered to " +
+                       format_rgb(m.reflectance) +
+                       ". Real materials lie between about 0.02 and 0.9 (--strict refuses such a material).");
+  }
+  check_material(m, where);
+}
+
+PolygonSoup read_input(const std::string& path, const ReadOptions& options) {
+  PolygonSoup soup = detail::extension_of(path) == ".json" ? read_scene(path, options) : read_model(path, options);
   if (soup.polygons.empty())
     throw InputError(path, 0, "contains no faces, so there is nothing to light. Check that the export included geometry.");
   std::vector<char> used(soup.materials.size(), 0);
   for (auto m : soup.material) used[m] = 1;
   for (std::size_t i = 0; i < soup.materials.size(); ++i) {
     if (!used[i]) continue;
-    const Material& m = soup.materials[i];
-    if (!m.defined)
-      throw InputError(path, 0,
-                       "material '" + m.name + "' is used (" + m.origin +
-                           ") but defined nowhere. Add it to the .mtl file or define it under \"materials\" in "
-                           "a scene file.");
-    check_material(m, path);
+    Material& m = soup.materials[i];
+    if (!m.defined) {
+      const std::string advice = "Add it to the .mtl file or define it under \"materials\" in a scene file.";
+      if (options.strict)
+        throw InputError(path, 0,
+                         "material '" + m.name + "' is used (" + m.origin + ") but defined nowhere. " + advice);
+      // Materials are unique by name in a soup, so this warns once per name, at its first use.
+      soup.warnings.push_back(m.origin + ": material '" + m.name + "' is used but defined nowhere; its faces get " +
+                              "the default material (grey, reflectance 0.5, no emission). " + advice);
+      Material fallback;  // grey 0.5, no emission
+      fallback.name = m.name;
+      fallback.origin = m.origin + ", defined nowhere: the default material";
+      m = fallback;
+    }
+    accept_material(m, path, options, soup.warnings);
   }
   return soup;
 }

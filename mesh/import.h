@@ -1,30 +1,61 @@
 // Reading models and scenes into a polygon soup. Every reader validates what it reads
 // and throws InputError naming the file (and line where the format has lines).
+//
+// Lenient where mature tools (Blender, MeshLab, assimp) are lenient: a missing MTL
+// library, a material used but defined nowhere, a reflectance of 1 or more and an
+// unknown PLY header line are read with a warning (PolygonSoup::warnings) that names
+// the file and line or the material. ReadOptions::strict refuses them instead. Damaged
+// data (truncated files, numbers that do not parse, bad indices) is always refused.
 #pragma once
 
 #include "mesh/soup.h"
 
 #include <string>
+#include <vector>
 
 namespace dynrad {
+
+struct ReadOptions {
+  // Refuse (InputError) what is otherwise read with a warning: a missing `mtllib`, a
+  // `usemtl` or scene assignment naming a material defined nowhere, a reflectance of 1
+  // or more, an unknown PLY header line. Text encodings (a byte-order mark, UTF-16)
+  // are decoded either way: they are not defects.
+  bool strict = false;
+};
+
+// What a reflectance of 1 or more becomes when read leniently: each of its channels
+// above this is lowered to it (the Blender add-on and PLY face colours use the same
+// limit). Reflectances below 1 are kept as they are.
+constexpr double kMaxReflectance = 0.95;
 
 // Reads one model file, chosen by extension: .obj (with its .mtl libraries), .ply,
 // .off, .stl. Materials come from MTL (Kd -> reflectance, Ke -> emission) or from
 // per-face colours (PLY/OFF, read as sRGB and linearised); faces without either get
 // the material "default". Materials referenced but not defined are kept with
-// `defined == false` so that a scene file can supply them; read_input() refuses any
-// that remain undefined.
-PolygonSoup read_model(const std::string& path);
+// `defined == false` so that a scene file can supply them; read_input() settles any
+// that remain undefined. OBJ and MTL text may be UTF-8 or UTF-16 with a byte-order mark.
+PolygonSoup read_model(const std::string& path, const ReadOptions& options = {});
 
 // Reads a JSON scene file (see README, "Scene files"): mesh files with transforms,
 // material definitions and assignments by material or group name.
-PolygonSoup read_scene(const std::string& path);
+PolygonSoup read_scene(const std::string& path, const ReadOptions& options = {});
 
-// read_scene for .json, read_model otherwise; then checks that every material used is
-// defined and physically valid (reflectance in [0, 1), emission >= 0, all finite).
-PolygonSoup read_input(const std::string& path);
+// read_scene for .json, read_model otherwise; then settles every material used: one
+// defined nowhere gets the default (grey, reflectance 0.5, no emission) with a warning
+// naming where it was first used, and each is checked by accept_material. Strict
+// reading refuses an undefined material.
+PolygonSoup read_input(const std::string& path, const ReadOptions& options = {});
 
-// Validates a material; throws InputError naming `where` when it is not usable.
+// Validates a material; throws InputError naming `where` when it is not usable: a value
+// that is not finite, a negative one, or a reflectance of 1 or more (the C ABI uses
+// this as it is: its callers set reflectance themselves).
 void check_material(const Material& m, const std::string& where);
+
+// check_material for materials read from files. Unless `options.strict`, a reflectance
+// of 1 or more in some channel is first lowered (each channel above kMaxReflectance
+// becomes kMaxReflectance), and a warning naming the material and where it is defined is appended to
+// `warnings`. Not finite or negative values are refused either way.
+void accept_material(Material& m, const std::string& where, const ReadOptions& options,
+                     std::vector<std::string>& warnings);
 
 }  // namespace dynrad

@@ -59,8 +59,9 @@ void check_magnitudes(const std::string& path, const SceneMesh& mesh) {
 
 }  // namespace
 
-LoadedScene load_scene(const std::string& path, const CleanupOptions& options, const SimplifyOptions& simplify) {
-  return load_soup(read_input(path), path, options, simplify);
+LoadedScene load_scene(const std::string& path, const CleanupOptions& options, const SimplifyOptions& simplify,
+                       const ReadOptions& read) {
+  return load_soup(read_input(path, read), path, options, simplify);
 }
 
 LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const CleanupOptions& options,

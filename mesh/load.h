@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mesh/cleanup.h"
+#include "mesh/import.h"
 #include "mesh/scene_mesh.h"
 #include "mesh/simplify.h"
 
@@ -22,8 +23,10 @@ struct LoadedScene {
 
 // Throws InputError for unusable input, including a scene that cleanup empties.
 // `simplify` merges flat regions after cleanup (mesh/simplify.h); off by default.
+// `read` says whether what mature tools accept with a warning is accepted (the
+// default; the warnings join LoadedScene::warnings) or refused (mesh/import.h).
 LoadedScene load_scene(const std::string& path, const CleanupOptions& options = {},
-                       const SimplifyOptions& simplify = {});
+                       const SimplifyOptions& simplify = {}, const ReadOptions& read = {});
 
 // The same for a soup built in memory (the C ABI, host add-ons): cleans it and builds
 // the mesh. Materials must already be checked (check_material in mesh/import.h);

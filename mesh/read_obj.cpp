@@ -1,6 +1,9 @@
-// OBJ + MTL through tinyobjloader. A first pass over the text validates every `v` and
+// OBJ + MTL through tinyobjloader. The text is decoded first (a UTF-8 or UTF-16
+// byte-order mark, io_util.h), and so are the MTL libraries, which tinyobjloader gets
+// through a MaterialReader of ours. A first pass over the text validates every `v` and
 // `f` statement (so errors carry line numbers, which tinyobjloader does not report)
-// and checks that each `mtllib` exists; tinyobjloader then does the actual parse.
+// and checks that each `mtllib` exists (a warning, or an error when reading strictly);
+// tinyobjloader then does the actual parse.
 #include "mesh/error.h"
 #include "mesh/import.h"
 #include "mesh/io_util.h"
@@ -11,15 +14,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
 namespace dynrad {
 namespace detail {
-PolygonSoup read_obj(const std::string& path);
+PolygonSoup read_obj(const std::string& path, const ReadOptions& options);
 }
 
 namespace {
@@ -30,6 +33,7 @@ struct ObjLines {
   std::vector<std::string> usemtl_names;    // in order of first use
   std::vector<std::uint32_t> usemtl_lines;  // line of first use
   std::size_t vertex_count = 0;             // `v` statements
+  std::vector<std::string> warnings;        // missing material libraries
 };
 
 std::vector<std::string> split_ws(const std::string& s) {
@@ -47,7 +51,7 @@ bool parse_double(const std::string& token, double& value) {
 }
 
 // Validates the statements we rely on; returns line bookkeeping for later messages.
-ObjLines scan_obj(const std::string& path, const std::string& text) {
+ObjLines scan_obj(const std::string& path, const std::string& text, const ReadOptions& options) {
   namespace fs = std::filesystem;
   if (text.find('\0') != std::string::npos)
     throw InputError(path, 0,
@@ -114,10 +118,15 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
     } else if (key == "mtllib") {
       for (std::size_t i = 1; i < tokens.size(); ++i) {
         const fs::path lib = dir / tokens[i];
-        if (!fs::exists(lib))
+        if (fs::exists(lib)) continue;
+        if (options.strict)
           throw InputError(path, line_no,
                            "material library '" + tokens[i] + "' not found (looked for " + lib.string() +
                                "). Put the .mtl file next to the .obj or remove the mtllib line.");
+        result.warnings.push_back(path + ":" + std::to_string(line_no) + ": material library '" + tokens[i] +
+                                  "' not found (looked for " + lib.string() +
+                                  "); the materials it should define get the default (grey, reflectance 0.5, no "
+                                  "emission) unless a scene file defines them.");
       }
     } else if (key == "usemtl" && tokens.size() >= 2) {
       const auto [it, added] = usemtl_index.emplace(tokens[1], static_cast<std::uint32_t>(result.usemtl_names.size()));
@@ -132,12 +141,12 @@ ObjLines scan_obj(const std::string& path, const std::string& text) {
   return result;
 }
 
-// Line of the first `newmtl NAME` of every material in an MTL file, for messages about
-// that material. One pass per file: looking each material up separately would read the
-// file once per material.
-std::unordered_map<std::string, std::size_t> newmtl_lines(const std::string& mtl_path) {
+// Line of the first `newmtl NAME` of every material in an MTL file's text, for
+// messages about that material. One pass per file: looking each material up separately
+// would read the file once per material.
+std::unordered_map<std::string, std::size_t> newmtl_lines(const std::string& mtl_text) {
   std::unordered_map<std::string, std::size_t> lines;
-  std::ifstream in(mtl_path);
+  std::istringstream in(mtl_text);
   std::size_t line_no = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
@@ -147,32 +156,61 @@ std::unordered_map<std::string, std::size_t> newmtl_lines(const std::string& mtl
   return lines;
 }
 
-std::vector<std::string> mtl_libraries(const std::string& text) {
-  std::vector<std::string> libs;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    const auto tokens = split_ws(line);
-    if (tokens.size() >= 2 && tokens[0] == "mtllib") libs.insert(libs.end(), tokens.begin() + 1, tokens.end());
+// Hands tinyobjloader each `mtllib` library as decoded text, and remembers the ones it
+// read (in order) with their `newmtl` lines. A library that is missing or not a file is
+// left out (scan_obj has warned, or refused when reading strictly); one that cannot be
+// read or decoded is an error, kept until tinyobjloader has returned.
+class MtlLibraries final : public tinyobj::MaterialReader {
+ public:
+  explicit MtlLibraries(std::filesystem::path dir) : dir_(std::move(dir)) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* index, std::string* warn, std::string* err) override {
+    const std::string lib_path = (dir_ / name).string();
+    std::error_code ec;
+    if (error || !std::filesystem::is_regular_file(lib_path, ec)) return false;
+    try {
+      const std::string text = detail::read_text_file(lib_path);
+      std::istringstream stream(text);
+      tinyobj::LoadMtl(index, materials, &stream, warn, err);
+      loaded.emplace_back(lib_path, newmtl_lines(text));
+    } catch (...) {
+      error = std::current_exception();
+      return false;
+    }
+    return true;
   }
-  return libs;
-}
+
+  std::vector<std::pair<std::string, std::unordered_map<std::string, std::size_t>>> loaded;
+  std::exception_ptr error;
+
+ private:
+  std::filesystem::path dir_;
+};
 
 }  // namespace
 
-PolygonSoup detail::read_obj(const std::string& path) {
+PolygonSoup detail::read_obj(const std::string& path, const ReadOptions& options) {
   namespace fs = std::filesystem;
-  const std::string text = detail::read_file(path);
-  const ObjLines lines = scan_obj(path, text);
+  const std::string text = detail::read_text_file(path);
+  const ObjLines lines = scan_obj(path, text, options);
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // CGAL triangulates, concave polygons included
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) throw InputError(path, 0, "OBJ parse failed: " + reader.Error());
+  const fs::path dir = fs::path(path).parent_path();
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string parse_warnings, parse_error;
+  std::istringstream stream(text);
+  MtlLibraries libraries(dir);
+  const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &parse_warnings, &parse_error, &stream, &libraries,
+                                       /*triangulate=*/false,  // CGAL triangulates, concave ones too
+                                       /*default_vcols_fallback=*/false);
+  if (libraries.error) std::rethrow_exception(libraries.error);
+  if (!parsed) throw InputError(path, 0, "OBJ parse failed: " + parse_error);
 
   PolygonSoup soup;
   soup.files.push_back(path);
-  const auto& attrib = reader.GetAttrib();
+  soup.warnings = lines.warnings;
   if (attrib.vertices.size() / 3 != lines.vertex_count)
     throw InputError(path, 0,
                      "found " + std::to_string(lines.vertex_count) + " vertex statements but the OBJ parser read " +
@@ -182,21 +220,14 @@ PolygonSoup detail::read_obj(const std::string& path) {
     soup.points.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
 
   // Materials: tinyobjloader's list, then undefined names that `usemtl` refers to.
-  const fs::path dir = fs::path(path).parent_path();
-  const auto libs = mtl_libraries(text);
-  std::vector<std::pair<std::string, std::unordered_map<std::string, std::size_t>>> lib_lines;
-  for (const auto& lib : libs) {
-    const std::string lib_path = (dir / lib).string();
-    lib_lines.emplace_back(lib_path, newmtl_lines(lib_path));
-  }
   std::unordered_map<std::string, std::uint32_t> material_index;
-  for (const auto& m : reader.GetMaterials()) {
+  for (const auto& m : materials) {
     Material mat;
     mat.name = m.name;
     mat.reflectance = Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
     mat.emission = Rgb(m.emission[0], m.emission[1], m.emission[2]);
-    mat.origin = libs.empty() ? path : (dir / libs.front()).string();
-    for (const auto& [lib_path, lines_of] : lib_lines) {
+    mat.origin = libraries.loaded.empty() ? path : libraries.loaded.front().first;
+    for (const auto& [lib_path, lines_of] : libraries.loaded) {
       const auto at = lines_of.find(m.name);
       if (at != lines_of.end()) {
         mat.origin = lib_path + ":" + std::to_string(at->second);
@@ -235,7 +266,7 @@ PolygonSoup detail::read_obj(const std::string& path) {
   };
 
   std::size_t total_faces = 0;
-  for (const auto& shape : reader.GetShapes()) total_faces += shape.mesh.num_face_vertices.size();
+  for (const auto& shape : shapes) total_faces += shape.mesh.num_face_vertices.size();
   if (total_faces != lines.face_lines.size())
     throw InputError(path, 0,
                      "found " + std::to_string(lines.face_lines.size()) + " face statements but the OBJ parser read " +
@@ -243,7 +274,7 @@ PolygonSoup detail::read_obj(const std::string& path) {
 
   std::size_t face = 0;
   std::unordered_map<std::string, std::uint32_t> group_index;
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : shapes) {
     const std::string& group_name = shape.name.empty() ? std::string("default") : shape.name;
     const auto [known, added] = group_index.emplace(group_name, static_cast<std::uint32_t>(soup.group_names.size()));
     if (added) soup.group_names.push_back(group_name);

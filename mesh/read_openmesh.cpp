@@ -24,7 +24,7 @@
 
 namespace dynrad {
 namespace detail {
-PolygonSoup read_openmesh(const std::string& path);
+PolygonSoup read_openmesh(const std::string& path, const ReadOptions& options);
 }
 
 namespace {
@@ -225,7 +225,16 @@ struct PlyHeader {
   std::vector<PlyElement> elements;
   std::size_t body = 0;   // offset of the first byte after end_header's line
   std::size_t lines = 0;  // lines up to and including end_header
+  std::vector<std::string> warnings;  // lines skipped: neither a PLY keyword nor a comment
 };
+
+// Header keywords after the first line ("ply"). Blender, MeshLab and assimp skip lines
+// with any other keyword, so dynrad does too, with a warning (or refuses them when
+// reading strictly).
+bool is_ply_keyword(const std::string& key) {
+  return key == "format" || key == "element" || key == "property" || key == "end_header" || key == "comment" ||
+         key == "obj_info";
+}
 
 int ply_type_size(const std::string& t) {
   if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
@@ -243,7 +252,7 @@ bool parse_count(const std::string& token, std::uint64_t& count) {
   return true;
 }
 
-PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
+PlyHeader parse_ply_header(const std::string& path, const std::string& text, bool strict) {
   PlyHeader header;
   std::istringstream in(text);
   bool ended = false;
@@ -292,11 +301,22 @@ PlyHeader parse_ply_header(const std::string& path, const std::string& text) {
         if (p.size == 0 || p.name.empty()) bad("'" + line + "' has an unknown type or no name.");
       }
       header.elements.back().properties.push_back(p);
-    } else if (key != "comment" && key != "obj_info" && !key.empty()) {
-      bad("unknown keyword '" + key + "'.");
+    } else if (!key.empty() && !is_ply_keyword(key)) {
+      if (strict) bad("unknown keyword '" + key + "'.");
+      // Text is skipped; control characters in a header are damage (binary data where
+      // the header should be, a header cut short).
+      for (const char c : line)
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == '\x7F')
+          bad("unknown keyword in a line that is not text.");
+      header.warnings.push_back(path + ":" + std::to_string(header.lines) + ": PLY header line '" +
+                                (line.size() > 60 ? line.substr(0, 57) + "..." : line) +
+                                "' has an unknown keyword (known: format, element, property, comment, obj_info, "
+                                "end_header); skipped.");
+      continue;
     }
     // OpenMesh reads the header word by word: a word too many would be read as the
-    // next keyword.
+    // next keyword. (Comments, obj_info and skipped lines reach it as comments,
+    // header_for_openmesh.)
     std::string extra;
     if (key != "comment" && key != "obj_info" && words >> extra)
       bad("unexpected '" + extra + "' at the end of the line.");
@@ -312,13 +332,49 @@ struct DeclaredCounts {
   std::uint64_t vertices = 0, faces = 0;
 };
 
-DeclaredCounts check_declared_counts(const std::string& path, const std::string& text, const std::string& ext) {
+// The header as OpenMesh should read it (the body is not part of it), with as many
+// lines as the file's, so that line numbers stay those of the file:
+// - "ply", then the format line: OpenMesh reads the second and third words after "ply"
+//   as the format, whatever line they are on;
+// - then comments, obj_info and skipped lines, all as comments, and blank lines:
+//   OpenMesh reads a comment to the end of its line but any other line word by word,
+//   where a word like "element" would be taken as a keyword;
+// - then element and property lines in their order, and end_header. In binary files
+//   OpenMesh finds the data by assuming that the line before end_header ends right
+//   after its last word, which a comment line (read with its line break) or a blank
+//   line breaks by a byte.
+std::string header_for_openmesh(const std::string& text, const PlyHeader& header) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (lines.size() < header.lines && start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  std::string format, comments, structure;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::string key;
+    std::istringstream(lines[i]) >> key;
+    if (key == "format" && format.empty())
+      format = lines[i] + "\n";
+    else if (key == "element" || key == "property" || key == "end_header" || key == "format")
+      structure += lines[i] + "\n";
+    else if (key.empty() || key == "comment")
+      comments += lines[i] + "\n";
+    else  // obj_info, or a line skipped with a warning
+      comments += "comment " + lines[i] + "\n";
+  }
+  return (lines.empty() ? std::string() : lines.front() + "\n") + format + comments + structure;
+}
+
+DeclaredCounts check_declared_counts(const std::string& path, const std::string& text, const std::string& ext,
+                                     const PlyHeader& header) {
   std::uint64_t vertices = 0, faces = 0;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> records;  // (count, least bytes per record)
   std::string others;    // PLY elements other than vertex and face, for the message
   std::size_t body = 0;  // offset where element data starts
   if (ext == ".ply") {
-    const PlyHeader header = parse_ply_header(path, text);
     for (const PlyElement& e : header.elements) {
       if (e.name == "vertex") vertices = e.count;
       if (e.name == "face") faces = e.count;
@@ -435,12 +491,11 @@ void check_ascii_vertices(const std::string& path, const std::string& text,
 //   becomes 129/255), so a colour outside [0, 1] would silently become another.
 // Both are refused naming the element. A body that simply ends early ends the walk
 // quietly: the reader's own truncation checks then name what is missing.
-void check_ply_body(const std::string& path, const std::string& text) {
+void check_ply_body(const std::string& path, const std::string& text, const PlyHeader& header) {
   auto is_colour = [](const std::string& name) {
     return name == "red" || name == "green" || name == "blue" || name == "diffuse_red" || name == "diffuse_green" ||
            name == "diffuse_blue";
   };
-  const PlyHeader header = parse_ply_header(path, text);
   if (header.body > text.size()) return;
   auto check_colour = [&](const PlyElement& e, const PlyProperty& p, std::uint64_t record, std::size_t line,
                           double value) {
@@ -614,7 +669,7 @@ bool is_ascii(const std::string& text, const std::string& ext) {
 
 }  // namespace
 
-PolygonSoup detail::read_openmesh(const std::string& path) {
+PolygonSoup detail::read_openmesh(const std::string& path, const ReadOptions& read_options) {
   const std::string ext = detail::extension_of(path);
   const std::string text = detail::read_file(path);
   const std::string sniffed = sniff_format(text.substr(0, 16));
@@ -626,12 +681,15 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
                          (sniffed.empty() ? std::string() : " (it looks like " + sniffed + ")") +
                          ". Is it mislabelled or damaged? Rename it to its real extension or re-export it.");
 
-  const DeclaredCounts declared = check_declared_counts(path, text, ext);
-  if (ext == ".ply") check_ply_body(path, text);
+  const PlyHeader ply = ext == ".ply" ? parse_ply_header(path, text, read_options.strict) : PlyHeader();
+  const DeclaredCounts declared = check_declared_counts(path, text, ext, ply);
+  if (ext == ".ply") check_ply_body(path, text, ply);
   // OFF allows '#' comments, which OpenMesh's reader does not: blank them out
-  // (keeping line numbers) and parse from memory.
+  // (keeping line numbers) and parse from memory. A PLY header is given to OpenMesh as
+  // it reads it (header_for_openmesh), with the same number of lines.
   std::string parsed = ext == ".off" ? strip_comments(text) : text;
-  const bool ascii = is_ascii(text, ext) && ext != ".stl";
+  if (ext == ".ply") parsed = header_for_openmesh(text, ply) + text.substr(std::min(ply.body, text.size()));
+  const bool ascii = ext == ".ply" ? ply.format == "ascii" : is_ascii(text, ext) && ext != ".stl";
   const std::vector<std::uint32_t> data_lines = ascii ? ascii_data_lines(parsed, ext) : std::vector<std::uint32_t>();
   if (ascii && ext == ".off") normalise_ascii_off(path, parsed, data_lines, declared.vertices, declared.faces);
 
@@ -693,6 +751,7 @@ PolygonSoup detail::read_openmesh(const std::string& path) {
 
   PolygonSoup soup;
   soup.files.push_back(path);
+  soup.warnings = ply.warnings;
   soup.points = std::move(importer.points);
   const std::uint32_t group = soup.find_or_add_group(std::filesystem::path(path).stem().string());
   Material fallback;

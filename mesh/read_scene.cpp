@@ -18,7 +18,7 @@ using json = nlohmann::json;
 
 class SceneParser {
  public:
-  explicit SceneParser(std::string path) : path_(std::move(path)) {}
+  SceneParser(std::string path, const ReadOptions& options) : path_(std::move(path)), options_(options) {}
 
   PolygonSoup parse() {
     const std::string text = detail::read_file(path_);
@@ -165,7 +165,7 @@ class SceneParser {
     fs::path file = entry["file"].get<std::string>();
     if (file.is_relative()) file = fs::path(path_).parent_path() / file;
     if (detail::extension_of(file.string()) == ".json") fail(where + ": scene files cannot include scene files.");
-    PolygonSoup soup = read_model(file.string());
+    PolygonSoup soup = read_model(file.string(), options_);
 
     if (entry.contains("material")) {
       if (!entry["material"].is_string()) fail(where + ".material must be a material name.");
@@ -229,7 +229,7 @@ class SceneParser {
     if (def.contains("reflectance")) m.reflectance = rgb(def["reflectance"], where + ".reflectance");
     if (def.contains("emission")) m.emission = rgb(def["emission"], where + ".emission");
     // Checked here even when no face uses it: a definition that is wrong is wrong.
-    if (def.contains("reflectance") || def.contains("emission")) check_material(m, path_);
+    if (def.contains("reflectance") || def.contains("emission")) accept_material(m, path_, options_, scene.warnings);
     const int existing = scene.find_material(name);
     if (existing < 0) {
       scene.warnings.push_back(path_ + ": material \"" + name + "\" is defined but no face uses it.");
@@ -244,10 +244,13 @@ class SceneParser {
   }
 
   std::string path_;
+  ReadOptions options_;
 };
 
 }  // namespace
 
-PolygonSoup read_scene(const std::string& path) { return SceneParser(path).parse(); }
+PolygonSoup read_scene(const std::string& path, const ReadOptions& options) {
+  return SceneParser(path, options).parse();
+}
 
 }  // namespace dynrad

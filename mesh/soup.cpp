@@ -39,6 +39,9 @@ void PolygonSoup::append(const PolygonSoup& other) {
     const auto [it, added] =
         material_index.emplace(other.materials[m].name, static_cast<std::uint32_t>(materials.size()));
     if (added) materials.push_back(other.materials[m]);
+    // A name one file uses without defining it is defined by the next file that does.
+    if (!added && !materials[it->second].defined && other.materials[m].defined)
+      materials[it->second] = other.materials[m];
     material_map[m] = it->second;
   }
   std::unordered_map<std::string, std::uint32_t> group_index;

@@ -44,7 +44,8 @@ struct PolygonSoup {
   std::size_t polygon_count() const { return polygons.size(); }
   Bounds bounds() const;
   // Appends `other`, re-indexing points, materials (merged by name: the first
-  // definition wins), groups and files.
+  // definition wins; a name used but not defined takes a later definition), groups and
+  // files.
   void append(const PolygonSoup& other);
   std::uint32_t find_or_add_group(const std::string& name);
   // Index of the material with this name, or -1.

@@ -3,7 +3,7 @@
 # write out/cornell_box.ply (open it in MeshLab) and out/cornell_box.json (the report).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh
+scripts/build.sh build  # only what building and running dynrad needs
 mkdir -p out
 build/plugin/dynrad solve samples/cornell_box.obj -o out/cornell_box.ply --report out/cornell_box.json
 echo "Open it with: meshlab out/cornell_box.ply"

@@ -1,32 +1,56 @@
 #!/usr/bin/env bash
-# Installs exactly the Debian 12 packages that dynrad's build, tests and CI need.
-# clang, libclang-rt-dev (libFuzzer and sanitizer runtimes) and llvm (llvm-symbolizer,
-# for readable sanitizer stacks) are for scripts/fuzz.sh and scripts/test-sanitizers.sh.
+# Installs the Debian 12 packages dynrad needs, and does nothing when they are present.
 # Safe to run repeatedly; needs root (or sudo).
+#
+#   scripts/install-deps.sh build   # building and running dynrad: compiler, CMake, Ninja,
+#                                   # pkg-config and the -dev libraries (scripts/demo.sh)
+#   scripts/install-deps.sh [all]   # also what the tests and CI need: GoogleTest, Google
+#                                   # Benchmark, MeshLab and Xvfb (viewer test), Blender
+#                                   # (add-on test), clang, libclang-rt-dev (libFuzzer and
+#                                   # sanitizer runtimes) and llvm (llvm-symbolizer, for
+#                                   # readable sanitizer stacks) for scripts/fuzz.sh and
+#                                   # scripts/test-sanitizers.sh
+#
+# DRY_RUN=1 prints the packages that would be installed and installs nothing.
 set -euo pipefail
 
-packages=(
+mode=${1:-all}
+build_packages=(
   build-essential cmake ninja-build pkg-config
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev
+)
+test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
   blender
   clang libclang-rt-dev llvm
 )
+case $mode in
+  build) packages=("${build_packages[@]}") ;;
+  all) packages=("${build_packages[@]}" "${test_packages[@]}") ;;
+  *)
+    echo "usage: $0 [build|all]   (build: what building and running dynrad needs; all, the default: also tests and CI)" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages present"
+  echo "install-deps ($mode): all ${#packages[@]} packages present"
+  exit 0
+fi
+if [ -n "${DRY_RUN:-}" ]; then
+  echo "install-deps ($mode): would install ${missing[*]}"
   exit 0
 fi
 
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-echo "install-deps: installing ${missing[*]}"
+echo "install-deps ($mode): installing ${missing[*]}"
 "${sudo_cmd[@]}" apt-get update -qq
 DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -35,7 +35,7 @@ elif [ $# -gt 0 ]; then
 fi
 scripts/install-deps.sh
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DDYNRAD_SANITIZE=ON -DDYNRAD_BUILD_BENCH=OFF > build-asan-configure.log || {
+  -DDYNRAD_SANITIZE=ON -DDYNRAD_BUILD_TESTS=ON -DDYNRAD_BUILD_BENCH=OFF > build-asan-configure.log || {
   cat build-asan-configure.log
   exit 1
 }

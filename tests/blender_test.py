@@ -331,7 +331,7 @@ def main():
           "dynamic's settings (paper)")
     check({"overshoot", "shaped_senders"} <= panel("progressive"), "the panel lacks the overshoot or shaped senders")
 
-    # A base colour above 1 is clamped below 1 (dynrad refuses reflectance >= 1).
+    # A base colour above 1 is clamped below 1 (the C ABI refuses reflectance >= 1).
     bpy.data.materials["red"].node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (2, 0, 0, 1)
     reflectance, _ = dynrad_blender.material_values(bpy.data.materials["red"])
     check(max(reflectance) < 1, "a base colour of 2 was not clamped below 1: %s" % (reflectance,))

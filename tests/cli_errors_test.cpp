@@ -20,20 +20,20 @@ struct Refusal {
   std::string output;  // what dynrad printed
 };
 
-// Runs `dynrad clean INPUT -o OUT` twice: with no output file present (none may
-// appear) and with an existing one (it must keep its contents).
+// Runs `dynrad clean INPUT -o OUT [OPTIONS]` twice: with no output file present (none
+// may appear) and with an existing one (it must keep its contents).
 Refusal expect_refused(const TempDir& dir, const std::string& input, const std::vector<std::string>& must_mention,
-                       const std::string& output_name = "out.ply") {
+                       const std::string& output_name = "out.ply", const std::string& options = "") {
   const std::string out = dir.path(output_name);
   std::filesystem::remove(out);
-  const auto result = test::run_dynrad("clean '" + input + "' -o '" + out + "'");
+  const auto result = test::run_dynrad("clean '" + input + "' -o '" + out + "' " + options);
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_FALSE(test::file_exists(out)) << "a failed run left " << out;
   for (const auto& text : must_mention) EXPECT_NE(result.output.find(text), std::string::npos) << result.output;
   // An existing output survives.
   if (std::filesystem::path(out).parent_path() == std::filesystem::path(dir.path(""))) {
     dir.write(output_name, "precious");
-    const auto again = test::run_dynrad("clean '" + input + "' -o '" + out + "'");
+    const auto again = test::run_dynrad("clean '" + input + "' -o '" + out + "' " + options);
     EXPECT_EQ(again.exit_code, 2);
     EXPECT_EQ(test::read_text(out), "precious");
     std::filesystem::remove(out);
@@ -80,9 +80,16 @@ TEST(BadInput, DamagedPlyHeadersAreRefusedNamingTheLine) {
   TempDir dir;
   const std::string tail = "property float y\nproperty float z\nelement face 0\nend_header\n0 0 0\n";
   // The fuzzer's input: "element" damaged to "elemeplx", so the properties had no element.
+  // Lines with unknown keywords are skipped with a warning (HostileInput tests), so
+  // the first property is what is refused; --strict refuses the unknown keyword itself.
+  const std::string damaged =
+      dir.write("k.ply", "ply\nformat binary_little_endian 1.0\nelemeplx\nertex 4\nproperty float x\n" + tail);
+  expect_refused(dir, damaged, {"k.ply:5", "before any element"});
+  expect_refused(dir, damaged, {"k.ply:3", "unknown keyword 'elemeplx'"}, "out.ply", "--strict");
+  // A header line that is not text is damage, --strict or not.
   expect_refused(
-      dir, dir.write("k.ply", "ply\nformat binary_little_endian 1.0\nelemeplx\nertex 4\nproperty float x\n" + tail),
-      {"k.ply:3", "unknown keyword 'elemeplx'"});
+      dir, dir.write("b.ply", "ply\nformat ascii 1.0\nx\x01\x02\x03\nelement vertex 1\nproperty float x\n" + tail),
+      {"b.ply:3", "not text"});
   expect_refused(dir, dir.write("p.ply", "ply\nformat ascii 1.0\ncomment no element yet\nproperty float x\n" + tail),
                  {"p.ply:4", "before any element"});
   expect_refused(dir, dir.write("n.ply", "ply\nformat ascii 1.0\nelement vertex -1\nproperty float x\n" + tail),
@@ -237,9 +244,13 @@ TEST(BadInput, EmptyScenes) {
   expect_refused(dir, dir.write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), {"flat.obj", "degenerate"});
 }
 
-TEST(BadInput, MissingMtlNamesTheObjLine) {
+// Without --strict a missing library is a warning (HostileInput tests).
+TEST(BadInput, MissingMtlNamesTheObjLineWithStrict) {
   TempDir dir;
-  expect_refused(dir, dir.write("m.obj", std::string("mtllib gone.mtl\n") + kTriangleObj), {"m.obj:1", "gone.mtl"});
+  expect_refused(dir, dir.write("m.obj", std::string("mtllib gone.mtl\n") + kTriangleObj),
+                 {"m.obj:1", "gone.mtl", "not found"}, "out.ply", "--strict");
+  expect_refused(dir, dir.write("u.obj", std::string(kTriangleObj) + "usemtl ghost\nf 1 3 2\n"),
+                 {"u.obj", "'ghost'", "u.obj:5", "defined nowhere"}, "out.ply", "--strict");
 }
 
 TEST(BadInput, UnreadableInput) {
@@ -265,11 +276,16 @@ TEST(BadInput, UnwritableOutput) {
   EXPECT_FALSE(test::file_exists(dir.path("out.xyz")));
 }
 
-TEST(BadInput, ReflectanceOfOneOrMoreNamesTheMaterial) {
+// Without --strict it is lowered to 0.95 with a warning (HostileInput tests); a
+// negative reflectance is refused either way.
+TEST(BadInput, ReflectanceOfOneOrMoreNamesTheMaterialWithStrict) {
   TempDir dir;
-  dir.write("r.mtl", "newmtl glowing_white\nKd 1.0 1.0 1.0\n");
-  expect_refused(dir, dir.write("r.obj", std::string("mtllib r.mtl\nusemtl glowing_white\n") + kTriangleObj),
-                 {"glowing_white", "r.mtl:1", "below 1"});
+  dir.write("r.mtl", "newmtl glowing_white\nKd 1.0 1.0 1.0\nnewmtl anti\nKd 0.5 -0.1 0.5\n");
+  const std::string white = dir.write("r.obj", std::string("mtllib r.mtl\nusemtl glowing_white\n") + kTriangleObj);
+  expect_refused(dir, white, {"glowing_white", "r.mtl:1", "below 1"}, "out.ply", "--strict");
+  const std::string negative = dir.write("n.obj", std::string("mtllib r.mtl\nusemtl anti\n") + kTriangleObj);
+  expect_refused(dir, negative, {"'anti'", "r.mtl:3", "must not be negative"});
+  expect_refused(dir, negative, {"'anti'", "r.mtl:3", "must not be negative"}, "out.ply", "--strict");
 }
 
 TEST(BadInput, BrokenSceneFiles) {

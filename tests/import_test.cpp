@@ -171,12 +171,23 @@ TEST(ImportScene, UnknownKeysAreErrors) {
   }
 }
 
-TEST(ImportValidation, ReflectanceOfOneIsRefusedNamingTheMaterial) {
+TEST(ImportValidation, ReflectanceOfOneIsLoweredOrRefusedWhenStrictNamingTheMaterial) {
   TempDir dir;
-  dir.write("m.mtl", "newmtl mirror\nKd 1.0 0.5 0.5\n");
+  dir.write("m.mtl", "newmtl mirror\nKd 1.0 0.97 0.5\n");
   const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl mirror\nf 1 2 3\n");
+  // Leniently: every channel above 0.95 is lowered to it, the others are kept.
+  const PolygonSoup soup = read_input(obj);
+  const Rgb used = soup.materials[soup.material[0]].reflectance;
+  EXPECT_EQ(used.r, kMaxReflectance);
+  EXPECT_EQ(used.g, kMaxReflectance);
+  EXPECT_EQ(used.b, 0.5);
+  ASSERT_EQ(soup.warnings.size(), 1u);
+  EXPECT_NE(soup.warnings[0].find("'mirror' (" + dir.path("m.mtl") + ":1)"), std::string::npos) << soup.warnings[0];
+  EXPECT_NE(soup.warnings[0].find("lowered to (0.95, 0.95, 0.5)"), std::string::npos) << soup.warnings[0];
+  ReadOptions strict;
+  strict.strict = true;
   try {
-    read_input(obj);
+    read_input(obj, strict);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -205,13 +216,43 @@ TEST(ImportValidation, ControlCharacterIsRefusedWithItsLine) {
   EXPECT_EQ(soup.polygons.size(), 1u);
 }
 
-TEST(ImportValidation, UndefinedMaterialIsRefusedUnlessASceneDefinesIt) {
+TEST(ImportValidation, UndefinedMaterialGetsTheDefaultUnlessASceneDefinesIt) {
   TempDir dir;
-  const std::string obj = dir.write("u.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl ghost\nf 1 2 3\n");
-  EXPECT_THROW(read_input(obj), InputError);
-  const PolygonSoup soup =
-      read_input(dir.write("u.json", R"({"meshes": [{"file": "u.obj"}], "materials": {"ghost": {"emission": 1}}})"));
+  const std::string obj = dir.write(
+      "u.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl ghost\nf 1 2 3\nusemtl other\nf 1 3 2\nusemtl ghost\nf 2 1 3\n");
+  const PolygonSoup lenient = read_input(obj);
+  for (std::size_t p = 0; p < lenient.polygons.size(); ++p) {
+    const Material& m = lenient.materials[lenient.material[p]];
+    EXPECT_TRUE(m.defined);
+    EXPECT_EQ(m.reflectance, Rgb(0.5));
+    EXPECT_FALSE(m.emits());
+  }
+  // One warning per name, at its first use.
+  ASSERT_EQ(lenient.warnings.size(), 2u);
+  EXPECT_EQ(lenient.warnings[0].rfind(obj + ":4: material 'ghost' is used but defined nowhere", 0), 0u)
+      << lenient.warnings[0];
+  EXPECT_EQ(lenient.warnings[1].rfind(obj + ":6: material 'other'", 0), 0u) << lenient.warnings[1];
+  ReadOptions strict;
+  strict.strict = true;
+  EXPECT_THROW(read_input(obj, strict), InputError);
+  const PolygonSoup soup = read_input(
+      dir.write("u.json", R"({"meshes": [{"file": "u.obj"}], "materials": {"ghost": {"emission": 1}, "other": {}}})"),
+      strict);
   EXPECT_TRUE(soup.materials[soup.material[0]].emits());
+}
+
+// In a scene, a material one file uses without defining it takes the definition of
+// another file: it is not defined nowhere.
+TEST(ImportScene, MaterialUsedInOneFileIsDefinedByAnother) {
+  TempDir dir;
+  dir.write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wall\nf 1 2 3\n");
+  dir.write("b.mtl", "newmtl wall\nKd 0.3 0.3 0.3\n");
+  dir.write("b.obj", "mtllib b.mtl\nv 0 0 1\nv 1 0 1\nv 0 1 1\nusemtl wall\nf 1 2 3\n");
+  const PolygonSoup soup =
+      read_input(dir.write("ab.json", R"({"meshes": [{"file": "a.obj"}, {"file": "b.obj"}]})"), ReadOptions{true});
+  ASSERT_EQ(soup.polygons.size(), 2u);
+  for (auto m : soup.material) EXPECT_NEAR(soup.materials[m].reflectance.g, 0.3, 1e-12);
+  EXPECT_TRUE(soup.warnings.empty());
 }
 
 // A plain "OFF" file may end a face line with a colour. OpenMesh reads the rest of a

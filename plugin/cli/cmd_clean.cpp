@@ -25,7 +25,7 @@ struct CleanOptions {
 int run_clean(const CleanOptions& options) {
   check_output_writable(options.output);  // fail before the work, not after
   const CleanupOptions cleanup = options.load.cleanup();
-  LoadedScene scene = load_scene(options.load.input, cleanup);
+  LoadedScene scene = load_scene(options.load.input, cleanup, {}, options.load.read());
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
   const SceneMesh& mesh = *scene.mesh;
   const VertexSplit split = split_vertices(mesh, options.crease_angle);

@@ -25,7 +25,7 @@ int run_info(const InfoOptions& options) {
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
   simplify.enabled = options.load.simplify;
-  LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
+  LoadedScene scene = load_scene(options.load.input, cleanup, simplify, options.load.read());
   SceneMesh& mesh = *scene.mesh;
   const SimplifyReport& s = scene.simplify;
   // What the cleaned model itself holds, before simplification and patching.

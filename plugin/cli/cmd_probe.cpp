@@ -339,7 +339,9 @@ int run_probe(const ProbeOptions& options) {
   std::unique_ptr<SceneMesh> model;
   std::unique_ptr<rad::Visibility> model_index;
   if (!options.model.empty()) {
-    model = std::move(load_scene(options.model, options.model_load.cleanup()).mesh);
+    LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
+    for (const auto& w : loaded.warnings) spdlog::warn("{}", w);  // its materials give the irradiance
+    model = std::move(loaded.mesh);
     model_index = std::make_unique<rad::Visibility>(*model);
   }
 

@@ -147,7 +147,7 @@ int run_solve(SolveCliOptions& options) {
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
   simplify.enabled = options.load.simplify;
-  LoadedScene scene = load_scene(options.load.input, cleanup, simplify);
+  LoadedScene scene = load_scene(options.load.input, cleanup, simplify, options.load.read());
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
   if (cleanup.imprint && scene.cleanup.imprinted_edges > 0)
     spdlog::info("imprinted {} lines where surfaces meet; removed {:.4g} (model units squared) that no light reaches",

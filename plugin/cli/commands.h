@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mesh/cleanup.h"
+#include "mesh/import.h"
 
 #include <CLI/CLI.hpp>
 
@@ -31,6 +32,7 @@ struct LoadOptions {
   double merge_tolerance = 1e-6;
   bool imprint = true;   // imprint where surfaces meet, remove hidden parts (mesh/imprint.h)
   bool simplify = true;  // merge flat regions before patching (mesh/simplify.h)
+  bool strict = false;   // refuse what is otherwise read with a warning (mesh/import.h)
 
   CleanupOptions cleanup() const {
     CleanupOptions options;
@@ -38,9 +40,15 @@ struct LoadOptions {
     options.imprint = imprint;
     return options;
   }
+  ReadOptions read() const {
+    ReadOptions options;
+    options.strict = strict;
+    return options;
+  }
 };
 void add_load_options(CLI::App& command, LoadOptions& options);
-// `--merge-tolerance` and `--no-imprint` alone, for a command that loads a second model.
+// `--merge-tolerance`, `--no-imprint` and `--strict` alone, for a command that loads a
+// second model.
 void add_cleanup_options(CLI::App& command, LoadOptions& options);
 // `--no-simplify`, for the commands that patch the model (solve, info).
 void add_simplify_flag(CLI::App& command, LoadOptions& options);

@@ -19,6 +19,9 @@ void add_cleanup_options(CLI::App& command, LoadOptions& options) {
       ->check(CLI::Range(0.0, 0.01));
   command.add_flag("!--no-imprint", options.imprint,
                    "Do not imprint where surfaces cross or touch, and keep the parts no light reaches (for comparison)");
+  command.add_flag("--strict", options.strict,
+                   "Refuse (exit 2) what is otherwise read with a warning: a missing .mtl library, a material defined "
+                   "nowhere, a reflectance of 1 or more, an unknown PLY header line");
 }
 
 void add_load_options(CLI::App& command, LoadOptions& options) {

@@ -13,8 +13,8 @@ with two colour attributes on its points:
   Attribute colouring shows the lighting at once.
 
 Materials. Reflectance = Base Color (linear), each channel clamped to at most 0.95: a
-white base colour is a display choice, not a perfect mirror, and dynrad refuses
-reflectance >= 1. Emission = Emission colour x Emission Strength, read as radiant
+white base colour is a display choice, not a perfect mirror, and the C ABI refuses
+reflectance >= 1 (dynrad's file readers lower it to 0.95 too, with a warning). Emission = Emission colour x Emission Strength, read as radiant
 exitance in W/m^2 leaving the front of the face, exactly as dynrad reads Ke from an
 MTL file (Blender's OBJ importer puts Ke into the Emission colour). An Emission shader
 gives Color x Strength with reflectance 0. Without nodes: the viewport colour as

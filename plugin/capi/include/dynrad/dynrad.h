@@ -17,6 +17,10 @@
  *   No C++ exception ever leaves the library.
  * - Units: emission is radiant exitance (W/m^2 leaving the front side); reflectance
  *   is diffuse albedo per channel, linear, in [0, 1); radiosity comes back in W/m^2.
+ *   The library is strict, as `dynrad --strict` is: a reflectance of 1 or more is
+ *   DYNRAD_INVALID_INPUT naming the material, never lowered behind the caller's back
+ *   (the command line's file readers lower it to 0.95 with a warning). A caller that
+ *   takes colours from users clamps them itself; the Blender add-on clamps to 0.95.
  *   Lengths are in any unit: radiosity does not depend on it.
  * - A polygon's front is the side from which its corners run counter-clockwise. Only
  *   the front emits and reflects.
