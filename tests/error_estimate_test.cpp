@@ -1,0 +1,166 @@
+// The solve's error estimate (Solver::estimate_error) against errors measured from
+// something independent: the path-traced reference of the 1990 room
+// (tests/data/globillum_room_reference.txt, written by tests/reference/box_reference,
+// 0.1% standard error per point) and the furnace's closed form. The estimate is what
+// the defaults stop by, so it must not promise more than the solve delivers.
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/probe.h"
+#include "radiosity/settings.h"
+#include "radiosity/solver.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace dynrad {
+namespace {
+
+using rad::Method;
+using rad::Quality;
+
+struct ReferencePoint {
+  Vec3d point, normal;
+  double radiosity = 0;
+};
+
+// The comparison grid without the four ceiling points on the source's corners (there
+// the solver's mesh has the source's vertex, whose value is the source's).
+std::vector<ReferencePoint> globillum_reference() {
+  std::ifstream in(DYNRAD_TEST_DATA_DIR "/globillum_room_reference.txt");
+  EXPECT_TRUE(in.good());
+  std::vector<ReferencePoint> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream f(line);
+    std::string surface;
+    double x, y, z, b;
+    f >> surface >> x >> y >> z >> b;
+    const bool floor = surface == "floor";
+    if (!floor && (x == 4.75 || x == 5.25) && (y == 2.75 || y == 3.25)) continue;
+    out.push_back({Vec3d(x, y, z), Vec3d(0, 0, floor ? 1 : -1), b});
+  }
+  return out;
+}
+
+struct Solved {
+  LoadedScene scene;
+  std::unique_ptr<ElementHierarchy> hierarchy;
+  std::unique_ptr<rad::Solver> solver;
+  rad::SolveReport report;
+};
+
+// As `dynrad solve MODEL --quality Q` does it, with `extra` applied to the request.
+Solved solve_like_the_command_line(const std::string& model, Quality quality,
+                                   const rad::SettingsRequest& extra = {}) {
+  Solved s;
+  SimplifyOptions simplify;
+  simplify.enabled = true;
+  s.scene = load_scene(model, {}, simplify);
+  rad::RefineSettings refine;
+  refine.method = Method::dynamic;
+  rad::SolveOptions options;
+  options.ambient_display = true;
+  rad::SettingsRequest request = extra;
+  request.quality = quality;
+  const rad::AppliedSettings applied = rad::apply_settings(*s.scene.mesh, request, refine, options);
+  make_patches(*s.scene.mesh, applied.patch_size);
+  RefinementOptions refinement;
+  refinement.min_area = 1e-6 * applied.patch_size * applied.patch_size;
+  s.hierarchy = std::make_unique<ElementHierarchy>(*s.scene.mesh, refinement);
+  s.solver = std::make_unique<rad::Solver>(*s.scene.mesh, *s.hierarchy, options, refine);
+  s.report = s.solver->run();
+  return s;
+}
+
+double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>& reference, double* worst = nullptr) {
+  const rad::Solver::Output out = s.solver->output();
+  double sum = 0, largest = 0;
+  for (const ReferencePoint& p : reference) {
+    const auto b = rad::probe(*s.scene.mesh, out.split, out.radiosity, p.point, p.normal);
+    EXPECT_TRUE(b.has_value());
+    const double e = b ? std::abs(b->g - p.radiosity) / p.radiosity : 1.0;
+    sum += e;
+    largest = std::max(largest, e);
+  }
+  if (worst) *worst = largest;
+  return sum / static_cast<double>(reference.size());
+}
+
+// Every quality stops by its error target, delivers it, and its estimate is at least
+// the error measured against the path tracer. The normal quality (the default) is
+// within the goal of 0.5% on average (the 2.6% at single points, the ceiling's
+// corners, is in bench/README.md).
+TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
+  const std::vector<ReferencePoint> reference = globillum_reference();
+  ASSERT_EQ(reference.size(), 476u);
+  double previous = 1;
+  for (Quality q : {Quality::draft, Quality::normal, Quality::high}) {
+    SCOPED_TRACE(rad::quality_name(q));
+    Solved s = solve_like_the_command_line(test::sample("globillum_room.obj"), q);
+    const double measured = mean_error_against_reference(s, reference);
+    const double estimated = s.report.estimated_error.total();
+    EXPECT_EQ(s.report.stopped_by, "error target");
+    EXPECT_LE(estimated, rad::quality_preset(q).error_target);
+    EXPECT_GE(estimated, measured);
+    EXPECT_LT(measured, previous);  // a higher quality is more accurate
+    if (q == Quality::normal) EXPECT_LT(measured, 0.005);
+    previous = measured;
+  }
+}
+
+// Stopped early, the estimate follows the light not yet shot: without the ambient
+// term it is most of the error, and it still bounds it.
+TEST(ErrorEstimate, BoundsTheErrorOfAnEarlyStop) {
+  const std::vector<ReferencePoint> reference = globillum_reference();
+  for (int shots : {50, 200}) {
+    SCOPED_TRACE(shots);
+    Solved s = [&] {
+      Solved r;
+      r.scene = load_scene(test::sample("globillum_room.obj"));
+      rad::RefineSettings refine;
+      refine.method = Method::dynamic;
+      rad::SolveOptions options;
+      options.max_iterations = static_cast<std::size_t>(shots);
+      options.converge = 0;
+      rad::SettingsRequest request;
+      const rad::AppliedSettings applied = rad::apply_settings(*r.scene.mesh, request, refine, options);
+      options.error_target = 0;
+      options.converge = 0;
+      make_patches(*r.scene.mesh, applied.patch_size);
+      r.hierarchy = std::make_unique<ElementHierarchy>(*r.scene.mesh);
+      r.solver = std::make_unique<rad::Solver>(*r.scene.mesh, *r.hierarchy, options, refine);
+      r.report = r.solver->run();
+      return r;
+    }();
+    ASSERT_EQ(s.report.iterations, static_cast<std::size_t>(shots));
+    const double measured = mean_error_against_reference(s, reference);
+    EXPECT_GT(measured, 0.02);  // far from converged
+    EXPECT_GE(s.report.estimated_error.total(), measured);
+    EXPECT_LE(s.report.estimated_error.total(), 3 * measured);  // and not uselessly loose
+  }
+}
+
+// The furnace: B = E / (1 - rho) everywhere, whatever the mesh.
+TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
+  test::TempDir dir;
+  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string model = dir.write("furnace.obj",
+                                      "mtllib furnace.mtl\nusemtl glow\n"
+                                      "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\n"
+                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  Solved s = solve_like_the_command_line(model, Quality::normal);
+  const rad::Solver::Output out = s.solver->output();
+  double mean = 0;
+  for (const Rgb& b : out.radiosity) mean += std::abs(b.g - 2.0) / 2.0 / static_cast<double>(out.radiosity.size());
+  EXPECT_EQ(s.report.stopped_by, "error target");
+  EXPECT_GE(s.report.estimated_error.total(), mean);
+  EXPECT_LT(mean, 0.005);
+}
+
+}  // namespace
+}  // namespace dynrad
