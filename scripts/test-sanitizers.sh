@@ -40,7 +40,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEB
   exit 1
 }
 rm -f build-asan-configure.log
-cmake --build build-asan --parallel "$(nproc)" --target dynrad dynrad_tests
+cmake --build build-asan --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests
 
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
