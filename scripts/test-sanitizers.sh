@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds the test
-# program and the dynrad command line it runs (gcc, -O1, assertions on) into
-# build-asan, then runs the tests with ctest. The first sanitizer error fails its test
+# programs (dynrad_tests, path_tracer_tests) and the dynrad command line they run (gcc,
+# -O1, assertions on) into build-asan, then runs the tests with ctest. The first sanitizer error fails its test
 # (halt_on_error; the dynrad processes the tests start inherit the same options).
 #
 #   scripts/test-sanitizers.sh        # every test (about an hour on 2 cores)

@@ -9,9 +9,10 @@
 //   the box's silhouette edges), and the visible form factor is
 //   F(P) - sum_j F((P inside cone j) outside cones j+1...), computed recursively.
 // - I(x) is a path estimate. From x a cosine-weighted direction finds the first face y
-//   (slab tests against every box, no acceleration structure); the path adds
-//   rho(y) D(y) and continues from y with probability rho(y) (Russian roulette, weight
-//   kept at 1), so its expected value is sum over bounces of rho(y1)...rho(yk) D(yk).
+//   (slab tests against every box, no acceleration structure); the path adds its
+//   throughput times D(y) and continues from y, the throughput multiplied by rho(y),
+//   so its expected value is the sum over bounces of rho(y1)...rho(yk) D(yk). Once the
+//   throughput is low, Russian roulette ends paths fairly (TraceOptions::roulette_below).
 //   Reaching an emitter adds nothing: D already counts emitted light (no double count).
 //   Self-intersection is avoided by face identity: a ray ignores the face it leaves.
 // - Sampling is randomised quasi-Monte Carlo. A replicate is N paths whose bounce-k
@@ -275,9 +276,19 @@ ShadowCone shadow_cone(const Bounds& b, const Vec3& x) {
   return cone;
 }
 
+// Cone c covers all of polygon p.
+bool covers(const ShadowCone& c, const Polygon& p, const Vec3& x) {
+  for (int k = 0; k < c.count; ++k)
+    for (int i = 0; i < p.count; ++i)
+      if (dot(c.planes[k], p.v[i] - x) < 0) return false;
+  return true;
+}
+
 // Form factor from x (normal n) to the part of polygon p outside cones[first...].
 double unblocked_form_factor(const Polygon& p, const std::vector<ShadowCone>& cones, std::size_t first, const Vec3& x,
                              const Vec3& n) {
+  for (std::size_t j = first; j < cones.size(); ++j)
+    if (covers(cones[j], p, x)) return 0;  // the common case in a shadow: no integral
   double f = form_factor(p, x, n);
   for (std::size_t j = first; j < cones.size(); ++j) {
     Polygon hidden = p;
@@ -460,20 +471,27 @@ struct Query {
   std::uint64_t key = 0;  // random stream of this query
 };
 
-// One path's estimate of the indirect irradiance (W/m^2) at the query.
-double indirect_path(const Scene& scene, const Query& q, const Replicate& replicate, int path) {
+// One path's estimate of the indirect irradiance (W/m^2) at the query. The path's
+// throughput (product of the reflectances so far) is kept while it is at least
+// `roulette_below`; under it, Russian roulette: the path survives with probability
+// throughput / roulette_below and then carries roulette_below.
+double indirect_path(const Scene& scene, const Query& q, const Replicate& replicate, int path, double roulette_below) {
   Rng rng = replicate.path_rng(path);
   Vec3 x = q.point, n = q.normal;
   int face = q.face;
-  double sum = 0;
+  double sum = 0, throughput = 1;
   for (int bounce = 0;; ++bounce) {
     const std::array<double, 3> u = replicate.sample(path, bounce, rng);
     const Hit hit = first_hit(scene, x, cosine_direction(n, u[0], u[1]), face);
     if (hit.face < 0 || !hit.front) return sum;
     const double rho = scene.reflectance_at(hit.face, hit.point);
     if (rho == 0) return sum;
-    sum += rho * direct(scene, hit.point, scene.faces[hit.face].normal);
-    if (u[2] >= rho) return sum;  // absorbed: survives with probability rho, weight 1
+    throughput *= rho;
+    sum += throughput * direct(scene, hit.point, scene.faces[hit.face].normal);
+    if (throughput < roulette_below) {
+      if (u[2] * roulette_below >= throughput) return sum;
+      throughput = roulette_below;
+    }
     x = hit.point, n = scene.faces[hit.face].normal, face = hit.face;
   }
 }
@@ -523,7 +541,7 @@ Estimate estimate(const Scene& scene, const Query& q, const TraceOptions& option
     parallel_for(replicates - first, threads, [&](int i) {
       const Replicate replicate(mix(q.key ^ mix(static_cast<std::uint64_t>(first + i))), paths);
       double sum = 0;
-      for (int path = 0; path < paths; ++path) sum += indirect_path(scene, q, replicate, path);
+      for (int path = 0; path < paths; ++path) sum += indirect_path(scene, q, replicate, path, options.roulette_below);
       means[first + i] = sum / paths;
     });
   };
@@ -557,6 +575,11 @@ Estimate estimate(const Scene& scene, const Query& q, const TraceOptions& option
 }
 
 void check(const TraceOptions& options) {
+  if (!(options.roulette_below > 0 && options.roulette_below <= 1))
+    throw std::invalid_argument("box tracer: roulette_below must be in (0, 1], not " +
+                                std::to_string(options.roulette_below));
+  if (options.min_replicates < 2)
+    throw std::invalid_argument("box tracer: min_replicates must be at least 2 (for a standard error)");
   const int paths = options.paths_per_replicate;
   if (paths <= 0 || (paths & (paths - 1)) != 0)
     throw std::invalid_argument("box tracer: paths_per_replicate must be a power of two, not " + std::to_string(paths));
