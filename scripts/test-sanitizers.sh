@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds the test
-# program and the dynrad command line it runs (gcc, -O1, assertions on) into
-# build-asan, then runs the tests with ctest. The first sanitizer error fails its test
+# programs (dynrad_tests, path_tracer_tests) and the dynrad command line they run (gcc,
+# -O1, assertions on) into build-asan, then runs the tests with ctest. The first sanitizer error fails its test
 # (halt_on_error; the dynrad processes the tests start inherit the same options).
 #
 #   scripts/test-sanitizers.sh        # every test (about an hour on 2 cores)
@@ -40,7 +40,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEB
   exit 1
 }
 rm -f build-asan-configure.log
-cmake --build build-asan --parallel "$(nproc)" --target dynrad dynrad_tests
+cmake --build build-asan --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests
 
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
