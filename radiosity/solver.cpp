@@ -706,14 +706,38 @@ void Solver::flush(ElementId q) {
   bool zero = true;
   for (const Rgb& v : pending) zero = zero && v.is_zero();
   if (zero) return;
+  // A bisection: each child has the corner opposite the split edge (the parent corner
+  // both children have), one end of that edge, and its midpoint. The children's nodes
+  // are then known in the parent's barycentric coordinates without any geometry: a
+  // corner of the parent is a unit vector, the new point is half of each end, and a
+  // child's edge midpoint is the mean of its ends' coordinates.
+  const Element& first = hierarchy_.element(el.children[0]);
+  const Element& second = hierarchy_.element(el.children[1]);
+  auto has = [](const Element& e, VertexHandle v) {
+    return e.corners[0] == v || e.corners[1] == v || e.corners[2] == v;
+  };
+  int opposite = 0;
+  while (opposite < 2 && !(has(first, el.corners[opposite]) && has(second, el.corners[opposite]))) ++opposite;
   for (ElementId c : el.children) {
     const Element& child = hierarchy_.element(c);
-    Vec3d corner[3];
-    for (int k = 0; k < 3; ++k) corner[k] = hierarchy_.position(child.corners[k]);
+    std::array<std::array<double, 3>, 3> at;  // barycentric coordinates of the child's corners
+    for (int k = 0; k < 3; ++k) {
+      int j = 0;
+      while (j < 3 && child.corners[k] != el.corners[j]) ++j;
+      if (j < 3) {
+        at[k] = {0, 0, 0};
+        at[k][j] = 1;
+      } else {  // the midpoint of the split edge
+        at[k] = {0.5, 0.5, 0.5};
+        at[k][opposite] = 0;
+      }
+    }
     std::array<Rgb, 6> delta;
     for (int k = 0; k < 3; ++k) {
-      delta[k] = quadratic(pending, barycentric(q, corner[k]));
-      delta[3 + k] = quadratic(pending, barycentric(q, (corner[k] + corner[(k + 1) % 3]) * 0.5));
+      const auto& a = at[k];
+      const auto& b = at[(k + 1) % 3];
+      delta[k] = quadratic(pending, a);
+      delta[3 + k] = quadratic(pending, {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])});
     }
     for (int k = 0; k < 3; ++k) value_[c][k] += delta[k];
     push_down(c, delta);
