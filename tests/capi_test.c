@@ -239,6 +239,8 @@ static void test_shaped_senders(void) {
   size_t n[2] = {0, 0};
   for (int shaped = 0; shaped < 2; ++shaped) {
     dynrad_options* options = options_with(0.6, 1e-3);
+    /* the same mesh for both: no refinement, which would differ between them */
+    CHECK(dynrad_options_set_method(options, "progressive") == DYNRAD_OK, "%s", dynrad_last_error());
     CHECK(dynrad_options_set_shaped_senders(options, shaped) == DYNRAD_OK, "%s", dynrad_last_error());
     b[shaped] = solve_radiosity(scene, options, shaped ? "shaped senders" : "flat senders", &n[shaped], NULL);
     dynrad_options_destroy(options);
@@ -514,10 +516,46 @@ static void test_imprint(void) {
   dynrad_scene_destroy(scene);
 }
 
+/* No options at all, as `dynrad solve` without any: dynamic subdivision stopped by the
+ * normal quality's error target (1%), which the report's estimate meets; the furnace's
+ * mean is then within it. A quality that does not exist is refused by name. */
+static void test_defaults(void) {
+  dynrad_scene* scene = create_furnace_box();
+  dynrad_options* options = NULL;
+  CHECK(dynrad_options_create(&options) == DYNRAD_OK, "%s", dynrad_last_error());
+  expect_error(dynrad_options_set_quality(options, "best"), DYNRAD_INVALID_ARGUMENT, "best", "quality 'best'");
+  for (int q = 0; q < 2; ++q) {
+    CHECK(dynrad_options_set_quality(options, q == 0 ? "normal" : "draft") == DYNRAD_OK, "%s", dynrad_last_error());
+    dynrad_result* result = NULL;
+    const dynrad_status s = dynrad_solve(scene, options, NULL, NULL, NULL, &result);
+    CHECK(s == DYNRAD_OK, "solve: %s: %s", dynrad_status_name(s), dynrad_last_error());
+    if (!result) continue;
+    dynrad_report report;
+    CHECK(dynrad_result_report(result, &report) == DYNRAD_OK, "%s", dynrad_last_error());
+    const double target = q == 0 ? 0.01 : 0.03;
+    CHECK(report.stopped_by == DYNRAD_STOP_CONVERGED, "stopped_by %d", report.stopped_by);
+    CHECK(report.estimated_error > 0 && report.estimated_error <= target, "estimated error %g, target %g",
+          report.estimated_error, target);
+    const size_t n = dynrad_result_vertex_count(result);
+    float* b = malloc(3 * n * sizeof *b);
+    CHECK(dynrad_result_radiosity(result, b, n) == DYNRAD_OK, "%s", dynrad_last_error());
+    double mean = 0;
+    for (size_t i = 0; i < n; ++i) mean += fabs(b[3 * i + 1] - 2.0) / 2.0 / (double)n;
+    CHECK(mean <= report.estimated_error, "mean error %g above the estimate %g", mean, report.estimated_error);
+    printf("defaults (%s): estimated error %.3f%%, measured %.3f%%\n", q == 0 ? "normal" : "draft",
+           100 * report.estimated_error, 100 * mean);
+    free(b);
+    dynrad_result_destroy(result);
+  }
+  dynrad_options_destroy(options);
+  dynrad_scene_destroy(scene);
+}
+
 int main(void) {
   test_version();
   test_imprint();
   test_furnace();
+  test_defaults();
   test_ambient_and_overshoot();
   test_simplify();
   test_shaped_senders();
