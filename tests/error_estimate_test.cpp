@@ -24,7 +24,7 @@ using rad::Quality;
 
 struct ReferencePoint {
   Vec3d point, normal;
-  double radiosity = 0;
+  double radiosity = 0, std_error = 0;
 };
 
 // The comparison grid without the four ceiling points on the source's corners (there
@@ -38,11 +38,11 @@ std::vector<ReferencePoint> globillum_reference() {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream f(line);
     std::string surface;
-    double x, y, z, b;
-    f >> surface >> x >> y >> z >> b;
+    double x, y, z, b, sigma;
+    f >> surface >> x >> y >> z >> b >> sigma;
     const bool floor = surface == "floor";
     if (!floor && (x == 4.75 || x == 5.25) && (y == 2.75 || y == 3.25)) continue;
-    out.push_back({Vec3d(x, y, z), Vec3d(0, 0, floor ? 1 : -1), b});
+    out.push_back({Vec3d(x, y, z), Vec3d(0, 0, floor ? 1 : -1), b, sigma});
   }
   return out;
 }
@@ -77,6 +77,14 @@ Solved solve_like_the_command_line(const std::string& model, Quality quality,
   return s;
 }
 
+// What the reference's own noise adds to a mean error measured against it: the mean of
+// |a normal deviate| is sqrt(2 / pi) times its standard deviation.
+double reference_noise(const std::vector<ReferencePoint>& reference) {
+  double sum = 0;
+  for (const ReferencePoint& p : reference) sum += p.std_error / p.radiosity;
+  return std::sqrt(2 / M_PI) * sum / static_cast<double>(reference.size());
+}
+
 double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>& reference, double* worst = nullptr) {
   const rad::Solver::Output out = s.solver->output();
   double sum = 0, largest = 0;
@@ -92,12 +100,15 @@ double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>
 }
 
 // Every quality stops by its error target, delivers it, and its estimate is at least
-// the error measured against the path tracer. The normal quality (the default) is
+// the error measured against the path tracer, less what the tracer's own noise adds
+// (about 0.08% here). The normal quality (the default) is
 // within the goal of 0.5% on average (the 2.6% at single points, the ceiling's
 // corners, is in bench/README.md).
 TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
   const std::vector<ReferencePoint> reference = globillum_reference();
   ASSERT_EQ(reference.size(), 476u);
+  const double noise = reference_noise(reference);
+  EXPECT_LT(noise, 0.001);
   double previous = 1;
   for (Quality q : {Quality::draft, Quality::normal, Quality::high}) {
     SCOPED_TRACE(rad::quality_name(q));
@@ -106,7 +117,7 @@ TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
     const double estimated = s.report.estimated_error.total();
     EXPECT_EQ(s.report.stopped_by, "error target");
     EXPECT_LE(estimated, rad::quality_preset(q).error_target);
-    EXPECT_GE(estimated, measured);
+    EXPECT_GE(estimated + noise, measured);
     EXPECT_LT(measured, previous);  // a higher quality is more accurate
     if (q == Quality::normal) EXPECT_LT(measured, 0.005);
     previous = measured;
