@@ -736,7 +736,10 @@ void Solver::flush(ElementId q) {
     for (int k = 0; k < 3; ++k) {
       const auto& a = at[k];
       const auto& b = at[(k + 1) % 3];
-      delta[k] = quadratic(pending, a);
+      // A corner is a node of the parent: a corner's or the split edge's midpoint's.
+      int j = 0;
+      while (j < 3 && a[j] != 1) ++j;
+      delta[k] = j < 3 ? pending[j] : pending[3 + (opposite + 1) % 3];
       delta[3 + k] = quadratic(pending, {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])});
     }
     for (int k = 0; k < 3; ++k) value_[c][k] += delta[k];
