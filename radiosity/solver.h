@@ -57,6 +57,11 @@ struct RefineSettings {
   // Dynamic, push-down oracle: where elements exist below q, decide by the push-down
   // error alone (OracleInputs::refined).
   bool refined_pushdown = true;
+  // Dynamic: paper levels of refinement allowed beyond max_level where a shadow's edge
+  // crosses an element (its corners see fractions of the sender that differ by more
+  // than a quarter): shadows are where the light changes fastest, and interpolating
+  // across one smears it over the element.
+  int shadow_levels = 1;
 };
 
 // Resident memory of this process in bytes (Linux /proc; 0 where unknown).
