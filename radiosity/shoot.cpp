@@ -129,7 +129,7 @@ bool Solver::shoot_once() {
         // A shadow's edge crosses q when its corners see different fractions of the
         // sender; there refinement may go deeper (RefineSettings::shadow_levels).
         bool shadow = false;
-        if (refine_.shadow_levels > 0 && el.generation >= max_generation) {
+        if (refine_.method == Method::dynamic && refine_.shadow_levels > 0 && el.generation >= max_generation) {
           double lo = 2, hi = -1;
           for (int k = 0; k < 3; ++k) {
             const CornerFormFactor& f = corner_form_factor(q, k);
