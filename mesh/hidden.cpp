@@ -43,19 +43,6 @@ struct Piece {
   State state = State::visible;
 };
 
-// Directions cosine-distributed about +z: even in the projected disc's area (a spiral
-// with the golden angle), so that each carries the same share of what the piece sees.
-std::vector<Vec3d> cosine_directions(int count) {
-  std::vector<Vec3d> directions;
-  const double golden = M_PI * (3 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i) {
-    const double r2 = (i + 0.5) / count, phi = golden * i;
-    const double r = std::sqrt(r2);
-    directions.emplace_back(r * std::cos(phi), r * std::sin(phi), std::sqrt(1 - r2));
-  }
-  return directions;
-}
-
 class HiddenFinder {
  public:
   HiddenFinder(const HiddenInput& in, const HiddenOptions& options, HiddenReport& report)
@@ -214,15 +201,13 @@ class HiddenFinder {
   // `seen` gets the visible pieces whose fronts the rays hit.
   bool enclosed(const Piece& piece, const std::vector<Vec3d>& directions, std::vector<std::uint32_t>& seen) const {
     const Vec3d& n = piece.normal;
-    const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-    const Vec3d u = OpenMesh::cross(helper, n).normalized(), v = OpenMesh::cross(n, u);
     const Vec3d origin = front_point(piece);
     if (!is_finite(origin) || !(piece.normal.norm() > 0.5)) return false;
     const int rays = static_cast<int>(directions.size());
     const int open_allowed = rays - static_cast<int>(std::ceil(options_.enclosed_fraction * rays));
     int open = 0;
     for (const Vec3d& local : directions) {
-      const Vec3d d = u * local[0] + v * local[1] + n * local[2];
+      const Vec3d d = about_normal(n, local);
       const long hit = rays_->first_hit(origin, d);
       if (hit >= 0) {
         const auto t = static_cast<std::uint32_t>(hit);

@@ -46,6 +46,7 @@ MeanFreePath mean_free_path(const SceneMesh& scene, const MeanFreePathOptions& o
   const RayCaster caster(points, triangles);
   const double offset = 1e-6 * scene.bounds().diagonal();  // off the surface, so it cannot hit itself
   SplitMix random{options.seed};
+  const std::vector<Vec3d> directions = cosine_directions(options.rays);
   double sum = 0;
   int hits = 0;
   for (int r = 0; r < options.rays; ++r) {
@@ -57,14 +58,9 @@ MeanFreePath mean_free_path(const SceneMesh& scene, const MeanFreePathOptions& o
     double a = random.next(), b = random.next();
     if (a + b > 1) a = 1 - a, b = 1 - b;
     const Vec3d origin = points[t[0]] + (points[t[1]] - points[t[0]]) * a + (points[t[2]] - points[t[0]]) * b;
-    // Cosine-distributed about the face's normal.
+    // Cosine-distributed about the face's normal: the r-th of an even spread.
     const Vec3d n = scene.normal(faces[i]);
-    const Vec3d helper = std::abs(n[0]) < 0.6 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-    const Vec3d u = OpenMesh::cross(n, helper).normalized();
-    const Vec3d w = OpenMesh::cross(n, u);
-    const double radius = std::sqrt(random.next()), angle = 2 * M_PI * random.next();
-    const Vec3d direction = u * (radius * std::cos(angle)) + w * (radius * std::sin(angle)) +
-                            n * std::sqrt(std::max(0.0, 1 - radius * radius));
+    const Vec3d direction = about_normal(n, directions[static_cast<std::size_t>(r)]);
     const long hit = caster.first_hit(origin + n * offset, direction);
     ++out.rays;
     if (hit < 0 || static_cast<std::size_t>(hit) == i) {

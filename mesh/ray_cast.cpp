@@ -1,5 +1,7 @@
 #include "mesh/ray_cast.h"
 
+#include <cmath>
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -45,6 +47,23 @@ RayCaster::RayCaster(const std::vector<Vec3d>& points, const std::vector<std::ar
 RayCaster::~RayCaster() {
   if (scene_) rtcReleaseScene(scene_);
   if (device_) rtcReleaseDevice(device_);
+}
+
+std::vector<Vec3d> cosine_directions(int count) {
+  std::vector<Vec3d> directions;
+  const double golden = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double r2 = (i + 0.5) / count, phi = golden * i;
+    const double r = std::sqrt(r2);
+    directions.emplace_back(r * std::cos(phi), r * std::sin(phi), std::sqrt(1 - r2));
+  }
+  return directions;
+}
+
+Vec3d about_normal(const Vec3d& n, const Vec3d& local) {
+  const Vec3d helper = std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
+  const Vec3d u = OpenMesh::cross(helper, n).normalized(), v = OpenMesh::cross(n, u);
+  return u * local[0] + v * local[1] + n * local[2];
 }
 
 long RayCaster::first_hit(const Vec3d& origin_world, const Vec3d& direction) const {

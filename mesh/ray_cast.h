@@ -16,6 +16,14 @@ struct RTCSceneTy;
 
 namespace dynrad {
 
+// `count` directions cosine-distributed about +z, evenly spread over the projected
+// disc's area (a spiral with the golden angle), so that each carries the same share of
+// what a surface sees.
+std::vector<Vec3d> cosine_directions(int count);
+
+// `local` (about +z) turned into the frame whose z axis is the unit vector `n`.
+Vec3d about_normal(const Vec3d& n, const Vec3d& local);
+
 class RayCaster {
  public:
   RayCaster(const std::vector<Vec3d>& points, const std::vector<std::array<std::uint32_t, 3>>& triangles);
