@@ -44,8 +44,7 @@ Prepared prepare(const std::string& path) {
   Prepared p{load_scene(path, {}, simplify), nullptr, 0};
   const double patch_size = default_patch_size(*p.loaded.mesh);
   p.patches = make_patches(*p.loaded.mesh, patch_size).patches;
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * patch_size * patch_size;  // as `dynrad solve`
+  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   p.hierarchy = std::make_unique<ElementHierarchy>(*p.loaded.mesh, refinement);
   return p;
 }

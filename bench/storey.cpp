@@ -186,8 +186,7 @@ Figures solve_once(const std::string& model, const Layout& layout, bool imprint)
   LoadedScene scene = load_scene(model, cleanup, simplify);
   const double patch_size = default_patch_size(*scene.mesh);
   make_patches(*scene.mesh, patch_size);
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * patch_size * patch_size;  // as `dynrad solve`
+  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(*scene.mesh, refinement);
   rad::RefineSettings refine;
   refine.method = rad::Method::dynamic;

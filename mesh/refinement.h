@@ -69,6 +69,14 @@ struct RefinementOptions {
   double min_area = 0;
 };
 
+// What `dynrad solve` refines with: no element below a millionth of the patch area, far
+// below any visible detail.
+inline RefinementOptions refinement_for_patch_size(double patch_size) {
+  RefinementOptions options;
+  options.min_area = 1e-6 * patch_size * patch_size;
+  return options;
+}
+
 // ---------------------------------------------------------------------------
 // Patches: the initial meshing, done once before lighting.
 

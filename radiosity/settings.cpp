@@ -28,26 +28,11 @@ const char* quality_name(Quality quality) {
 }
 
 QualityPreset quality_preset(Quality quality) {
-  QualityPreset p;
-  switch (quality) {
-    case Quality::draft:
-      p.error_target = 0.03;
-      p.patch_per_free_path = 1.0;
-      p.max_level = 2;
-      p.pushdown = 0.04;
-      p.pushdown_floor = 0.02;
-      break;
-    case Quality::normal:
-      break;  // the struct's defaults
-    case Quality::high:
-      p.error_target = 0.003;
-      p.patch_per_free_path = 0.5;
-      p.max_level = 3;
-      p.pushdown = 0.01;
-      p.pushdown_floor = 0.01;
-      break;
-  }
-  return p;
+  //                                   target  patch  level  push-down  floor
+  static const QualityPreset draft{0.03, 1.0, 2, 0.04, 0.02};
+  static const QualityPreset normal{};  // the struct's defaults
+  static const QualityPreset high{0.003, 0.5, 3, 0.01, 0.01};
+  return quality == Quality::draft ? draft : quality == Quality::high ? high : normal;
 }
 
 std::size_t available_memory() {

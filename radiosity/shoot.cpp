@@ -126,21 +126,10 @@ bool Solver::shoot_once() {
           in.current[k] = patch.reflectance * shot * form_factor(q, k);
           in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
         }
-        // A shadow's edge crosses q when its corners see different fractions of the
-        // sender; there refinement may go deeper (RefineSettings::shadow_levels).
-        bool shadow = false;
-        if (refine_.method == Method::dynamic && refine_.shadow_levels > 0 && el.generation >= max_generation) {
-          double lo = 2, hi = -1;
-          for (int k = 0; k < 3; ++k) {
-            const CornerFormFactor& f = corner_form_factor(q, k);
-            const double fraction = f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0;
-            lo = std::min(lo, fraction);
-            hi = std::max(hi, fraction);
-          }
-          shadow = hi - lo > 0.25;
-        }
-        const bool can_split =
-            el.generation < (shadow ? max_generation + 2 * refine_.shadow_levels : max_generation);
+        // Dynamic refines deeper where a shadow's edge crosses q (RefineSettings::shadow_levels).
+        const bool deeper = refine_.method == Method::dynamic && refine_.shadow_levels > 0 &&
+                            el.generation >= max_generation && shadow_crosses(q);
+        const bool can_split = el.generation < max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
         const bool odd = el.generation % 2 == 1;
         // The push-down error costs three closed forms; it is estimated only where the
         // oracle's first condition (the cumulated gradient) holds and it can decide. Its

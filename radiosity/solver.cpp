@@ -589,14 +589,23 @@ double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Orac
     const CornerFormFactor& fb = corner_form_factor(q, l);
     const double a = in.current[k].luminance(), b = in.current[l].luminance();
     const double at_mid = shot * mid[k];
-    const auto fraction = [](const CornerFormFactor& f) { return f.unoccluded > 0 ? f.visible / f.unoccluded : 1.0; };
-    const bool shadow_edge = std::abs(fraction(fa) - fraction(fb)) > 1e-9;
+    const bool shadow_edge = std::abs(fa.visible_fraction() - fb.visible_fraction()) > 1e-9;
     const double error = std::abs(at_mid - 0.5 * (a + b)) + (shadow_edge ? 0.5 * std::abs(a - b) : 0.0);
     in.pushdown_error = std::max(in.pushdown_error, error);
     in.current_peak = std::max({in.current_peak, a, at_mid});
     mid_sum += mid[k];
   }
   return mid_sum / 3;
+}
+
+bool Solver::shadow_crosses(ElementId q) const {
+  double lo = 2, hi = -1;
+  for (int k = 0; k < 3; ++k) {
+    const double fraction = corner_form_factor(q, k).visible_fraction();
+    lo = std::min(lo, fraction);
+    hi = std::max(hi, fraction);
+  }
+  return hi - lo > 0.25;
 }
 
 std::array<double, 3> Solver::barycentric(ElementId e, const Vec3d& point) const {

@@ -286,7 +286,12 @@ class Solver {
   Rgb ambient() const;
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
+    // The fraction of the sender the corner sees (1 where it could see nothing anyway).
+    double visible_fraction() const { return unoccluded > 0 ? visible / unoccluded : 1.0; }
   };
+  // A shadow's edge crosses q: its corners see fractions of the sender that differ by
+  // more than a quarter (see RefineSettings::shadow_levels).
+  bool shadow_crosses(ElementId q) const;
   struct Receiver {
     VertexHandle vertex;
     std::uint32_t patch;  // of the first element that has it (its facing is the receiver's)

@@ -69,8 +69,7 @@ Solved solve_like_the_command_line(const std::string& model, Quality quality,
   request.quality = quality;
   const rad::AppliedSettings applied = rad::apply_settings(*s.scene.mesh, request, refine, options);
   make_patches(*s.scene.mesh, applied.patch_size);
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * applied.patch_size * applied.patch_size;
+  const RefinementOptions refinement = refinement_for_patch_size(applied.patch_size);
   s.hierarchy = std::make_unique<ElementHierarchy>(*s.scene.mesh, refinement);
   s.solver = std::make_unique<rad::Solver>(*s.scene.mesh, *s.hierarchy, options, refine);
   s.report = s.solver->run();
@@ -119,7 +118,9 @@ TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
     EXPECT_LE(estimated, rad::quality_preset(q).error_target);
     EXPECT_GE(estimated + noise, measured);
     EXPECT_LT(measured, previous);  // a higher quality is more accurate
-    if (q == Quality::normal) EXPECT_LT(measured, 0.005);
+    if (q == Quality::normal) {
+      EXPECT_LT(measured, 0.005);
+    }
     previous = measured;
   }
 }

@@ -76,8 +76,7 @@ TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotches) {
   options.ambient_display = true;
   const rad::AppliedSettings applied = rad::apply_settings(*scene.mesh, {}, refine, options);
   make_patches(*scene.mesh, applied.patch_size);
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * applied.patch_size * applied.patch_size;
+  const RefinementOptions refinement = refinement_for_patch_size(applied.patch_size);
   ElementHierarchy hierarchy(*scene.mesh, refinement);
   rad::Solver solver(*scene.mesh, hierarchy, options, refine);
   solver.run();

@@ -204,8 +204,7 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   const rad::AppliedSettings applied = rad::apply_settings(*mesh, options.request, refine, solve_options);
   const double patch_size = applied.patch_size;
   const PatchingReport patching = make_patches(*mesh, patch_size);
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * patch_size * patch_size;
+  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(*mesh, refinement);
 
   bool callback_stop = false;

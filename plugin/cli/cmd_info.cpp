@@ -2,6 +2,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
+#include "radiosity/settings.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -30,7 +31,9 @@ int run_info(const InfoOptions& options) {
   const SimplifyReport& s = scene.simplify;
   // What the cleaned model itself holds, before simplification and patching.
   const std::size_t model_vertices = s.vertices_before, model_faces = s.faces_before;
-  const double patch_size = options.patch_size > 0 ? options.patch_size : default_patch_size(mesh);
+  // The patch size `dynrad solve` would choose with no options (radiosity/settings.h).
+  const double patch_size =
+      options.patch_size > 0 ? options.patch_size : rad::choose_settings(mesh, rad::Quality::normal).patch_size;
   const PatchingReport patching = make_patches(mesh, patch_size);
   const CleanupReport& r = scene.cleanup;
   const Bounds b = mesh.bounds();
@@ -159,7 +162,7 @@ Command add_info_command(CLI::App& app) {
   add_simplify_flag(*command, options->load);
   command->add_flag("--json", options->json, "Print the information as JSON");
   command->add_option("--patch-size", options->patch_size,
-                      "Longest patch edge, model units (default: a tenth of the bounding-box diagonal)")
+                      "Longest patch edge, model units (default: what solve chooses with no options)")
       ->check(CLI::PositiveNumber);
   return [options] { return run_info(*options); };
 }

@@ -175,9 +175,7 @@ int run_solve(SolveCliOptions& options) {
   const double patch_size = applied.patch_size;
   const std::string& patch_rule = applied.patch_size_rule;
   const PatchingReport patching = make_patches(mesh, patch_size);
-  RefinementOptions refinement;
-  // No element below a millionth of the patch area: far below any visible detail.
-  refinement.min_area = 1e-6 * patch_size * patch_size;
+  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(mesh, refinement);
   spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", options.load.input, patching.faces_before,
                patching.patches, patch_size, patch_rule,

@@ -115,8 +115,7 @@ void load_and_solve(const std::string& path) {
   // Coarse patches and a few shots: the point is every code path, not accuracy.
   const double patch_size = 4 * default_patch_size(mesh);
   make_patches(mesh, patch_size);
-  RefinementOptions refinement;
-  refinement.min_area = 1e-6 * patch_size * patch_size;
+  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(mesh, refinement);
   rad::SolveOptions options;
   options.max_iterations = 3;
