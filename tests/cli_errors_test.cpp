@@ -137,6 +137,27 @@ TEST(BadInput, BinaryOffIsReadAndItsCountsChecked) {
   EXPECT_EQ(nlohmann::json::parse(ok.output)["faces"].get<int>(), 1);
   expect_refused(dir, dir.write("many.off", binary_off(2000000000, 1)), {"many.off", "declares 2000000000 vertices"});
   expect_refused(dir, dir.write("neg.off", binary_off(3, -5)), {"neg.off", "-5 faces"});
+  // Found by fuzzing (CI, stop 22): a face declaring 4294901760 corners in a 128-byte
+  // file; OpenMesh appended that many indices until the fuzzer's timeout.
+  std::string corners = binary_off(3, 1);
+  const std::uint32_t damaged = 0xFFFF0000u;
+  corners.replace(corners.size() - 16, 4, reinterpret_cast<const char*>(&damaged), 4);
+  expect_refused(dir, dir.write("corners.off", corners), {"corners.off", "face 0 declares 4294901760 corners"});
+  // With 'C' a vertex carries a colour and so does a face (three 32-bit values each):
+  // the walk over the records must not refuse a whole file.
+  std::string coloured = "COFF BINARY\n";
+  auto put = [&](const auto& value) { coloured.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  for (std::int32_t count : {3, 1, 0}) put(count);
+  for (int v = 0; v < 3; ++v) {
+    for (float x : {float(v == 1), float(v == 2), 0.f}) put(x);
+    for (std::int32_t c : {200, 100, 50}) put(c);
+  }
+  for (std::int32_t i : {3, 0, 1, 2, 200, 100, 50}) put(i);
+  const auto with_colour = test::run_dynrad("info --json '" + dir.write("colour.off", coloured) + "'");
+  ASSERT_EQ(with_colour.exit_code, 0) << with_colour.output;
+  EXPECT_EQ(nlohmann::json::parse(with_colour.output)["faces"].get<int>(), 1);
+  expect_refused(dir, dir.write("short_colour.off", coloured.substr(0, coloured.size() - 4)),
+                 {"short_colour.off", "face 0 declares 3 corners"});
 }
 
 // Found by fuzzing: OpenMesh believes a face's corner count and appends that many
