@@ -1,4 +1,4 @@
-// Helpers shared by the readers (internal to mesh/).
+// Helpers shared by the file readers (mesh/ and the readers in layers above it).
 #pragma once
 
 #include <string>

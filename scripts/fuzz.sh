@@ -29,11 +29,12 @@ ci_runs() {
   case $1 in
     obj) echo 6000 ;;
     stl) echo 50000 ;;
+    ies | ldt) echo 100000 ;;  # about 10 s each (photometry readers, from memory)
     *) echo 60000 ;;
   esac
 }
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene ies ldt)
 
 scripts/install-deps.sh
 # Debug keeps assertions (internal invariants) on; -O1 keeps the build and runs fast.
