@@ -124,7 +124,7 @@ class EulumdatParser {
 
     // The numbers: direct ratios, angles, intensities.
     tokens_ = detail::tokenize(text_, pos_, line_ + 1, false);
-    const std::size_t planes = isym == 0 ? static_cast<std::size_t>(mc)
+    const std::size_t planes = isym == 0   ? static_cast<std::size_t>(mc)
                                : isym == 1 ? 1
                                : isym == 4 ? static_cast<std::size_t>(mc / 4 + 1)
                                            : static_cast<std::size_t>(mc / 2 + 1);
@@ -171,8 +171,8 @@ class EulumdatParser {
     detail::CSymmetry symmetry = detail::CSymmetry::none;
     const auto require = [&](std::size_t index, double angle) {
       if (std::abs(c[index] - angle) > 1e-6)
-        fail(mc_line, "with Isym " + std::to_string(isym) + ", C angle number " + std::to_string(index + 1) +
-                          " of " + std::to_string(mc) + " must be " + number_text(angle) + ", but it is " +
+        fail(mc_line, "with Isym " + std::to_string(isym) + ", C angle number " + std::to_string(index + 1) + " of " +
+                          std::to_string(mc) + " must be " + number_text(angle) + ", but it is " +
                           number_text(c[index]) + ". Check Mc and the C angles.");
     };
     switch (isym) {
@@ -278,8 +278,8 @@ class EulumdatParser {
   long integer(const std::string& what, long low, long high) {
     const double v = number(what);
     if (v != std::floor(v) || v < static_cast<double>(low) || v > static_cast<double>(high))
-      fail(line_, what + " is " + number_text(v) + "; it must be a whole number from " + std::to_string(low) +
-                      " to " + std::to_string(high) + ".");
+      fail(line_, what + " is " + number_text(v) + "; it must be a whole number from " + std::to_string(low) + " to " +
+                      std::to_string(high) + ".");
     return static_cast<long>(v);
   }
 

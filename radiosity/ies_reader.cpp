@@ -125,8 +125,9 @@ class IesParser {
       if (key.rfind("[LUMINAIRE]", 0) == 0) luminaire = std::string(trimmed(text.substr(11)));
       if (key.rfind("[LUMCAT]", 0) == 0) catalogue = std::string(trimmed(text.substr(8)));
     }
-    fail(line_, "has no TILT= line (it follows the keyword lines and precedes the numbers). Is the file truncated, "
-                "or not an IES file?");
+    fail(line_,
+         "has no TILT= line (it follows the keyword lines and precedes the numbers). Is the file truncated, "
+         "or not an IES file?");
   }
 
   void read_tilt_line(std::string_view value) {
@@ -161,8 +162,8 @@ class IesParser {
   long integer(const std::string& what, long low, long high) {
     const double v = number(what);
     if (v != std::floor(v) || v < static_cast<double>(low) || v > static_cast<double>(high))
-      fail(line_of_last(), what + " is " + number_text(v) + "; it must be a whole number from " +
-                               std::to_string(low) + " to " + std::to_string(high) + ".");
+      fail(line_of_last(), what + " is " + number_text(v) + "; it must be a whole number from " + std::to_string(low) +
+                               " to " + std::to_string(high) + ".");
     return static_cast<long>(v);
   }
 
@@ -199,22 +200,24 @@ class IesParser {
     lamps_ = integer("the number of lamps", 1, 1000000);
     lumens_ = number("the lumens per lamp");
     if (lumens_ != -1 && !(lumens_ > 0))
-      fail(line_of_last(), "lumens per lamp is " + number_text(lumens_) +
-                               "; it must be positive, or -1 for absolute photometry.");
+      fail(line_of_last(),
+           "lumens per lamp is " + number_text(lumens_) + "; it must be positive, or -1 for absolute photometry.");
     multiplier_ = number("the candela multiplier");
-    if (!(multiplier_ > 0)) fail(line_of_last(), "candela multiplier " + number_text(multiplier_) + " is not positive.");
+    if (!(multiplier_ > 0))
+      fail(line_of_last(), "candela multiplier " + number_text(multiplier_) + " is not positive.");
     vertical_line_ = next_ < tokens_.size() ? tokens_[next_].line : line_;
-    vertical_ = static_cast<std::size_t>(
-        integer("the number of vertical angles", 2, std::numeric_limits<int>::max()));
-    horizontal_ = static_cast<std::size_t>(
-        integer("the number of horizontal angles", 1, std::numeric_limits<int>::max()));
+    vertical_ = static_cast<std::size_t>(integer("the number of vertical angles", 2, std::numeric_limits<int>::max()));
+    horizontal_ =
+        static_cast<std::size_t>(integer("the number of horizontal angles", 1, std::numeric_limits<int>::max()));
     const double type = number("the photometric type");
     if (type == 2)
-      fail(line_of_last(), "photometric type 2 is type B (floodlights, angles about a horizontal axis); dynrad reads "
-                           "type C only. Ask the manufacturer for type C data, or convert the file.");
+      fail(line_of_last(),
+           "photometric type 2 is type B (floodlights, angles about a horizontal axis); dynrad reads "
+           "type C only. Ask the manufacturer for type C data, or convert the file.");
     if (type == 3)
-      fail(line_of_last(), "photometric type 3 is type A (automotive); dynrad reads type C only. Ask the "
-                           "manufacturer for type C data, or convert the file.");
+      fail(line_of_last(),
+           "photometric type 3 is type A (automotive); dynrad reads type C only. Ask the "
+           "manufacturer for type C data, or convert the file.");
     if (type != 1)
       fail(line_of_last(), "photometric type " + number_text(type) + " is not 1 (type C), 2 (B) or 3 (A).");
     const double units = number("the units type (1 feet, 2 metres)");
@@ -234,9 +237,9 @@ class IesParser {
     p_.height = std::abs(height);
     ballast_ = number("the ballast factor");
     if (!(ballast_ > 0)) fail(line_of_last(), "ballast factor " + number_text(ballast_) + " is not positive.");
-    const double second = number(version_ < 2002 ? "the ballast-lamp photometric factor"
-                                                 : version_ == 2002 ? "the future-use value (1)"
-                                                                    : "the file generation type");
+    const double second = number(version_ < 2002    ? "the ballast-lamp photometric factor"
+                                 : version_ == 2002 ? "the future-use value (1)"
+                                                    : "the file generation type");
     if (version_ < 2002) {
       if (!(second > 0))
         fail(line_of_last(), "ballast-lamp photometric factor " + number_text(second) + " is not positive.");
@@ -278,7 +281,8 @@ class IesParser {
     for (std::size_t i = 0; i < horizontal_; ++i) {
       const double a = number("a horizontal angle");
       if (i == 0) first_line = line_of_last();
-      if (a < 0 || a > 360) fail(line_of_last(), "horizontal angle " + number_text(a) + " is outside 0 to 360 degrees.");
+      if (a < 0 || a > 360)
+        fail(line_of_last(), "horizontal angle " + number_text(a) + " is outside 0 to 360 degrees.");
       if (!planes.empty() && !(a - planes.back() >= 1e-6))
         fail(line_of_last(), "horizontal angle " + number_text(a) + " is not above the one before (" +
                                  number_text(planes.back()) + "): horizontal angles must ascend.");

@@ -56,8 +56,8 @@ double end_slope(double h0, double d0, double h1, double d1) {
 // kept within [y0, y1] (which it is, but for rounding, with monotone slopes).
 double hermite(double y0, double y1, double m0, double m1, double h, double t) {
   const double t2 = t * t, t3 = t2 * t;
-  const double v = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * m0 + (3 * t2 - 2 * t3) * y1 +
-                   (t3 - t2) * h * m1;
+  const double v =
+      (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * m0 + (3 * t2 - 2 * t3) * y1 + (t3 - t2) * h * m1;
   return std::clamp(v, std::min(y0, y1), std::max(y0, y1));
 }
 
@@ -132,8 +132,8 @@ double integrate_flux(const Photometry& p) {
   if (!consistent(p)) return 0;
   static constexpr double kNode[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                                       0.9061798459386640};
-  static constexpr double kWeight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                        0.4786286704993665, 0.2369268850561891};
+  static constexpr double kWeight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                        0.2369268850561891};
   constexpr double kMaxPiece = 2.5;  // degrees
   const std::vector<double>& g = p.gamma_angles;
   const std::vector<double>& c = p.c_angles;
@@ -171,10 +171,10 @@ double integrate_flux(const Photometry& p) {
 }
 
 Photometry read_photometry(const std::string& path) {
-  const std::string ext = detail::extension_of(path);
+  const std::string ext = dynrad::detail::extension_of(path);
   if (ext == ".ies") return read_ies(path);
   if (ext == ".ldt") return read_eulumdat(path);
-  const std::string text = detail::read_text_file(path);
+  const std::string text = dynrad::detail::read_text_file(path);
   // IES: a version line, or (LM-63-1986) a TILT= line among the first lines.
   bool ies = text.rfind("IESNA", 0) == 0 || text.rfind("IES:", 0) == 0 || text.rfind("\xEF\xBB\xBFIES", 0) == 0;
   for (std::size_t at = text.find("TILT"); !ies && at != std::string::npos; at = text.find("TILT", at + 1)) {
@@ -195,8 +195,8 @@ Photometry read_photometry(const std::string& path) {
   }
 }
 
-Photometry read_ies(const std::string& path) { return parse_ies(path, detail::read_text_file(path)); }
-Photometry read_eulumdat(const std::string& path) { return parse_eulumdat(path, detail::read_text_file(path)); }
+Photometry read_ies(const std::string& path) { return parse_ies(path, dynrad::detail::read_text_file(path)); }
+Photometry read_eulumdat(const std::string& path) { return parse_eulumdat(path, dynrad::detail::read_text_file(path)); }
 
 namespace detail {
 
@@ -216,8 +216,7 @@ std::vector<Token> tokenize(std::string_view text, std::size_t from, std::size_t
       const std::size_t start = i;
       while (i < text.size()) {
         const char c = text[i];
-        if (c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\n' || c == '\r' ||
-            (comma_separates && c == ','))
+        if (c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\n' || c == '\r' || (comma_separates && c == ','))
           break;
         ++i;
       }

@@ -32,11 +32,11 @@ bool parse_number(std::string_view text, bool decimal_comma, double& value);
 // The symmetries of a type C distribution, and the half-open domain of C the file's
 // planes cover (every other C is the mirror image of one in it):
 enum class CSymmetry {
-  axial,      // one plane, C irrelevant
-  none,       // [0, 360)
-  c0_c180,    // mirror in the C0-C180 plane: [0, 180]
-  c90_c270,   // mirror in the C90-C270 plane: [90, 270]
-  quadrant,   // both planes: [0, 90]
+  axial,     // one plane, C irrelevant
+  none,      // [0, 360)
+  c0_c180,   // mirror in the C0-C180 plane: [0, 180]
+  c90_c270,  // mirror in the C90-C270 plane: [90, 270]
+  quadrant,  // both planes: [0, 90]
 };
 
 // Fills p.c_angles and p.candela (the whole sphere) from the file's planes: `angles`

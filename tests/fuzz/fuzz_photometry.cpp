@@ -29,8 +29,7 @@ constexpr std::string_view kFormat = DYNRAD_FUZZ_PHOTOMETRY;
 }
 
 void check(const dynrad::rad::Photometry& p) {
-  if (p.c_angles.empty() || p.gamma_angles.size() < 2 ||
-      p.candela.size() != p.c_angles.size() * p.gamma_angles.size())
+  if (p.c_angles.empty() || p.gamma_angles.size() < 2 || p.candela.size() != p.c_angles.size() * p.gamma_angles.size())
     bug("the table's size does not match its angles");
   for (std::size_t i = 0; i < p.c_angles.size(); ++i)
     if (!(p.c_angles[i] >= 0 && p.c_angles[i] < 360) || (i > 0 && !(p.c_angles[i] > p.c_angles[i - 1])))
@@ -60,8 +59,8 @@ void check(const dynrad::rad::Photometry& p) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const dynrad::rad::Photometry p = kFormat == "ies" ? dynrad::rad::parse_ies("fuzz.ies", text)
-                                                       : dynrad::rad::parse_eulumdat("fuzz.ldt", text);
+    const dynrad::rad::Photometry p =
+        kFormat == "ies" ? dynrad::rad::parse_ies("fuzz.ies", text) : dynrad::rad::parse_eulumdat("fuzz.ldt", text);
     check(p);
   } catch (const dynrad::InputError&) {
     // Refused with a message: the right answer to a bad file.
