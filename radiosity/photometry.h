@@ -23,19 +23,23 @@ namespace dynrad::rad {
 
 struct Photometry {
   std::string file;    // path as given
-  std::string format;  // "IES LM-63-1995", "IES LM-63-2002", "IES LM-63-2019", "EULUMDAT"
+  // "IES LM-63-1995", "IES LM-63-2002", "IES LM-63-2019", "EULUMDAT"; also
+  // "IES LM-63-1991" (first line IESNA91) and "IES LM-63-1986" (no version line).
+  std::string format;
   std::string name;    // luminaire name or catalogue number, where the file gives one
 
   // The distribution, expanded over the whole sphere from the symmetry the file
   // declares: c_angles ascending from 0 and below 360 (the plane at 360 is the one at
   // 0), gamma_angles ascending within [0, 180]; candela[c * gamma_angles.size() + g]
   // in cd, every factor of the file applied (IES: candela multiplier, ballast factor
-  // and ballast-lamp photometric factor; EULUMDAT: cd/klm times the lamps' flux / 1000
-  // and the conversion factor). Beyond the last gamma angle the intensity is 0.
+  // and, up to LM-63-1995, the ballast-lamp photometric factor; EULUMDAT: cd/klm times
+  // the lamps' flux / 1000 and the conversion factor). Beyond the last gamma angle the intensity is 0, and so
+  // before the first (a file from 90 to 180 gives no light downwards). At least two
+  // gamma angles; a single C angle (0) means the same plane all round.
   std::vector<double> c_angles, gamma_angles, candela;
   // Symmetry the file declared, in words ("none", "about the vertical axis",
   // "C0-C180 plane", "C90-C270 plane", "both planes" / IES: "axial", "quadrant",
-  // "bilateral", "none").
+  // "bilateral", "bilateral (C90-C270 plane)" for horizontal angles 90-270, "none").
   std::string symmetry;
 
   // Luminous flux: `flux` is the integral of the distribution over the sphere (lm).
@@ -62,7 +66,9 @@ struct Photometry {
 
   // Intensity in cd towards (c, gamma), degrees: smooth (C1) interpolation between the
   // file's angles (monotone cubic Hermite, which makes no new peaks and no negative
-  // values), periodic in C, 0 beyond the last gamma angle.
+  // values: within each cell of the table it stays between the cell's corner values),
+  // exact at the file's angles, periodic in C, 0 outside the gamma angles (and for a
+  // NaN angle).
   double intensity(double c_deg, double gamma_deg) const;
 };
 
@@ -76,7 +82,9 @@ Photometry parse_ies(const std::string& path, const std::string& text);
 Photometry parse_eulumdat(const std::string& path, const std::string& text);
 
 // Integral of `p`'s intensity over the sphere, lm (what Photometry::flux holds; for
-// tests and for distributions built by hand).
+// tests and for distributions built by hand): exact in C, 5-point Gauss-Legendre on
+// pieces of at most 2.5 degrees in gamma (see photometry.cpp); 0 for an inconsistent
+// table (sizes that do not match).
 double integrate_flux(const Photometry& p);
 
 }  // namespace dynrad::rad
