@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <sstream>
@@ -633,6 +634,29 @@ TEST(PhotometryRead, ChoosesTheReaderByExtensionThenContent) {
   EXPECT_NE(std::string(e.what()).find("neither an IES file"), std::string::npos) << e.what();
   const InputError missing = refusal([&] { read_photometry(dir.path("none.ies")); });
   EXPECT_EQ(missing.file(), dir.path("none.ies"));
+}
+
+}  // namespace
+}  // namespace dynrad::rad
+
+namespace dynrad::rad {
+namespace {
+
+// The fuzzers' seeds (tests/fuzz/seeds, written for dynrad) must be files the readers
+// accept, or the fuzzers would start from refusals only.
+TEST(PhotometrySeeds, FuzzSeedsAreReadWithoutError) {
+  namespace fs = std::filesystem;
+  const fs::path seeds = fs::path(DYNRAD_TEST_DATA_DIR).parent_path() / "fuzz" / "seeds";
+  int files = 0;
+  for (const char* format : {"ies", "ldt"})
+    for (const auto& entry : fs::directory_iterator(seeds / format)) {
+      SCOPED_TRACE(entry.path().string());
+      const Photometry p = read_photometry(entry.path().string());
+      EXPECT_GT(p.flux, 0);
+      EXPECT_EQ(p.format == "EULUMDAT", std::string(format) == "ldt");
+      ++files;
+    }
+  EXPECT_EQ(files, 10);
 }
 
 }  // namespace
