@@ -37,6 +37,8 @@ void write_triangles_with_values(const std::string& path, const std::vector<Vec3
   const std::size_t n = positions.size();
   if (values.linear.size() != n || values.display.size() != n || values.quality.size() != n)
     throw std::logic_error("write_triangles_with_values: value arrays do not match the vertices");
+  for (const auto& [name, scalar] : values.scalars)
+    if (scalar.size() != n) throw std::logic_error("write_triangles_with_values: " + name + " does not match the vertices");
 
   OutMesh out;
   out.request_vertex_colors();
@@ -62,6 +64,13 @@ void write_triangles_with_values(const std::string& path, const std::vector<Vec3
     }
     out.add_property(quality, "quality");
     out.property(quality).set_persistent(true);
+    std::vector<OpenMesh::VPropHandleT<float>> scalars(values.scalars.size());
+    for (std::size_t k = 0; k < scalars.size(); ++k) {
+      out.add_property(scalars[k], values.scalars[k].first);
+      out.property(scalars[k]).set_persistent(true);
+      for (std::size_t i = 0; i < n; ++i)
+        out.property(scalars[k], OpenMesh::VertexHandle(static_cast<int>(i))) = values.scalars[k].second[i];
+    }
     for (std::size_t i = 0; i < n; ++i) {
       OpenMesh::VertexHandle v(static_cast<int>(i));
       for (int c = 0; c < 3; ++c) out.property(channel[c], v) = static_cast<float>(values.linear[i][c]);

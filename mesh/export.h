@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dynrad {
@@ -20,6 +21,9 @@ struct VertexValues {
   std::vector<Rgb> linear;
   std::vector<std::array<std::uint8_t, 3>> display;
   std::vector<float> quality;
+  // More float properties, one value per vertex each, written after `quality` (PLY
+  // only), by name.
+  std::vector<std::pair<std::string, std::vector<float>>> scalars;
 };
 
 struct WriteOptions {

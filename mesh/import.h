@@ -21,6 +21,9 @@ struct ReadOptions {
   // or more, an unknown PLY header line. Text encodings (a byte-order mark, UTF-16)
   // are decoded either way: they are not defects.
   bool strict = false;
+  // Top-level keys of a JSON scene file that the caller reads itself (the light
+  // sources, say): accepted and left alone here. Any other unknown key is an error.
+  std::vector<std::string> other_scene_keys;
 };
 
 // What a reflectance of 1 or more becomes when read leniently: each of its channels

@@ -31,7 +31,9 @@ class SceneParser {
       throw InputError(path_, 0, std::string("invalid JSON: ") + e.what());
     }
     if (!doc.is_object()) fail("the scene must be a JSON object with a \"meshes\" array.");
-    check_keys(doc, "scene", {"meshes", "materials"});
+    std::set<std::string> keys = {"meshes", "materials"};
+    keys.insert(options_.other_scene_keys.begin(), options_.other_scene_keys.end());
+    check_keys(doc, "scene", keys);
     if (!doc.contains("meshes") || !doc["meshes"].is_array() || doc["meshes"].empty())
       fail("\"meshes\" must be a non-empty array of {\"file\": ...} entries.");
 

@@ -26,6 +26,10 @@
 //     derivation"), so no rays are spent on them: interpolated from q's corners and
 //     edge midpoints by a quadratic (the paper: linearly from the corners; see
 //     RefineSettings::quadratic_pushdown).
+// Luminaires (luminaire.h) are senders of the same walk: before the first patch, each
+// shoots once, exactly; its "form factor" at a corner is the illuminance it gives there
+// per unit of its colour (Solver::luminaire_illuminance), so that everything below
+// (oracle, push-down, subdivision, energy) is the patches'.
 // Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a
 // split is always visited. In dynamic, new elements start from their parent's cumulated
 // radiosity, interpolated from its corners (Dubuis & Bieri); in adaptive, their values
@@ -57,24 +61,56 @@
 namespace dynrad::rad {
 
 bool Solver::shoot_once() {
-  // pick brightest patch: i
-  const std::uint32_t i = brightest_patch();
-  Patch& sender = patches_[i];
-  const Rgb unshot = sender.unshot;
-  if (unshot.r == 0 && unshot.g == 0 && unshot.b == 0) return false;
-  // With over-relaxation (SolveOptions::overshoot) a little more than the unshot
-  // radiosity, or later a correction of the opposite sign.
-  const Rgb shot = unshot * options_.overshoot;
-  sender_ = i;
-  current_shot_ = shot;
-  shape_sender();
-  sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
-  report_.energy.unshot = report_.energy.unshot - shot * sender.area;  // kept current for ambient()
-  // (sender.shot grows only after this shot's walk: elements created during the walk
-  // gather the shots before this one and then receive this one like the rest.)
+  std::uint32_t i = 0;
+  Rgb shot;
+  Rgb unshot;  // the sender's, before this shot
+  if (next_luminaire_ < luminaires_.size()) {
+    // Luminaires shoot first, each once and exactly: the light of a luminaire is all
+    // "unshot" until it shoots, and none is left after (no overshoot, no shape).
+    const std::size_t k = next_luminaire_++;
+    i = static_cast<std::uint32_t>(patches_.size() + k);
+    shot = unshot = luminaires_[k].colour;
+    sender_ = i;
+    current_shot_ = shot;
+    shape_.on = false;
+    shape_.max_weight = 1;
+    luminaire_unshot_ = Rgb();
+    for (std::size_t m = next_luminaire_; m < luminaires_.size(); ++m)
+      luminaire_unshot_ += luminaires_[m].colour * luminaire_flux_[m];
+    report_.energy.unshot = report_.energy.unshot - shot * luminaire_flux_[k];
+    unshot_staying_ = unshot_staying_ - shot * luminaire_flux_[k];
+  } else {
+    // pick brightest patch: i
+    i = brightest_patch();
+    Patch& sender = patches_[i];
+    unshot = sender.unshot;
+    if (unshot.r == 0 && unshot.g == 0 && unshot.b == 0) return false;
+    // With over-relaxation (SolveOptions::overshoot) a little more than the unshot
+    // radiosity, or later a correction of the opposite sign.
+    shot = unshot * options_.overshoot;
+    sender_ = i;
+    current_shot_ = shot;
+    shape_sender();
+    sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
+    report_.energy.unshot = report_.energy.unshot - shot * sender.area;  // kept current for ambient()
+    unshot_staying_ = unshot_staying_ - shot * (sender.area * (sender.lost >= 0 ? 1 - sender.lost : 1.0));
+    // (sender.shot grows only after this shot's walk: elements created during the walk
+    // gather the shots before this one and then receive this one like the rest.)
+  }
 
-  const int max_generation = 2 * refine_.max_level;
-  const Rgb ambient_now = refine_.dynamic.pushdown_ambient ? ambient() : Rgb();
+  // A luminaire's light is the sharpest a surface receives (a point source's pool,
+  // a beam's edge) and the most of it: its shots may refine further, to a tighter
+  // push-down error (RefineSettings::luminaire_levels, luminaire_pushdown).
+  const bool from_luminaire = is_luminaire(i);
+  const int max_generation = 2 * (refine_.max_level + (from_luminaire ? refine_.luminaire_levels : 0));
+  OracleThresholds oracle = refine_.dynamic;
+  if (from_luminaire) {
+    oracle.pushdown *= refine_.luminaire_pushdown;
+    // and the error is estimated wherever the shot reaches (its closed form is cheap):
+    // an element with even corners may hold the peak of a pool of light.
+    oracle.pushdown_cumulated_gradient = 0;
+  }
+  const Rgb ambient_now = oracle.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<ElementId> ready;  // existing elements of the next level
   std::vector<ElementId> passed;  // visited, the shot goes on below
@@ -87,7 +123,7 @@ bool Solver::shoot_once() {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
   };
-  receiving_patches(i, level);  // every patch j but those that cannot (or hardly) receive
+  receiving_patches(i, level);  // every patch j but those that cannot (or hardly) receive (from a luminaire: all but those)
 
   while (!level.empty()) {
     next.clear();
@@ -138,8 +174,8 @@ bool Solver::shoot_once() {
         std::array<double, 3> mid{};  // form factors at q's edge midpoints, where known
         in.refined = refine_.refined_pushdown && !el.is_leaf();
         if (refine_.method == Method::dynamic && can_split && !odd &&
-            refine_.dynamic.variant == OracleThresholds::Variant::pushdown &&
-            (in.refined || cumulated_gradient(in) > refine_.dynamic.pushdown_cumulated_gradient)) {
+            oracle.variant == OracleThresholds::Variant::pushdown &&
+            (in.refined || cumulated_gradient(in) > oracle.pushdown_cumulated_gradient)) {
           mean_form_factor = estimate_pushdown_error(q, patch.reflectance, in, mid);
           in.ambient = (patch.reflectance * ambient_now).luminance();
         }
@@ -153,7 +189,7 @@ bool Solver::shoot_once() {
                                    adaptive_oracle(in, refine_.adaptive_threshold)));
             break;
           case Method::dynamic:
-            go_on = can_split && (odd || dynamic_oracle(in, refine_.dynamic));
+            go_on = can_split && (odd || dynamic_oracle(in, oracle));
             break;
         }
         if (go_on) {
@@ -240,7 +276,7 @@ bool Solver::shoot_once() {
     complete_split.swap(complete_split_next);
   }
   account_transfers(terminals, reach, i, shot);
-  patches_[i].shot += shot;
+  if (!is_luminaire(i)) patches_[i].shot += shot;
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   report_.transfers_history.push_back(report_.energy_transfers);

@@ -10,6 +10,12 @@
 
 namespace dynrad::rad {
 
+// Photometric solves: lumens per watt of the emission of faces (given in W/m^2) and
+// of RGB white, Radiance's convention for equal-energy white light over the visible
+// range. Luminance of an RGB value: Rec. 709 / sRGB weights (Rgb::luminance), which
+// sum to 1, so a white of value v has luminance v.
+constexpr double kLumensPerWatt = 179.0;
+
 struct SolveOptions {
   double converge = 0.01;         // stop when unshot power is this fraction of emitted power
   std::size_t max_iterations = 0;  // stop after this many shots (0: no limit)
@@ -56,6 +62,14 @@ struct SolveOptions {
   // below a tenth of the target, or below a quarter of the mesh's part), the solve
   // stops too: shooting on would buy little (stopped_by "error floor").
   double error_target = 0;
+  // Photometric solves (luminaires, or --units photometric) work in lumens: emitting
+  // faces' emission, given in W/m^2, is multiplied by this (179 lm/W, Radiance's
+  // efficacy of equal-energy white light, in photometric solves; 1 otherwise).
+  double emission_scale = 1;
+  // Reflectance channels below this are raised to it. Illuminance is recovered from
+  // radiosity as (B - emission) / reflectance, which a black surface would lose; a
+  // floor of 1e-4 (photometric solves) keeps it at a cost of 1e-4 of the light.
+  double min_reflectance = 0;
   // Called at every shot boundary; returning true stops the solve there (signals).
   std::function<bool()> should_stop;
   // Called after every shot.
@@ -84,6 +98,7 @@ struct SolveReport {
   std::uint64_t visibility_rays = 0;
   std::size_t elements = 0;
   std::size_t patches = 0;
+  std::size_t luminaires = 0;
   std::size_t receivers = 0;
   double unshot_fraction = 1;
   double seconds = 0;

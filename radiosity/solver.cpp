@@ -71,8 +71,13 @@ const char* method_name(Method method) {
   return "?";
 }
 
-Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions options, RefineSettings refine)
-    : scene_(scene), hierarchy_(hierarchy), options_(std::move(options)), refine_(refine) {
+Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions options, RefineSettings refine,
+               std::vector<Luminaire> luminaires)
+    : scene_(scene),
+      hierarchy_(hierarchy),
+      options_(std::move(options)),
+      refine_(refine),
+      luminaires_(std::move(luminaires)) {
   visibility_ = std::make_unique<Visibility>(scene_);
   patches_.resize(hierarchy_.patch_count());
   std::vector<ElementId> leaves;
@@ -88,18 +93,29 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     leaves.clear();
     hierarchy_.leaves(root, leaves);
     const Material& m = scene_.material(hierarchy_.element(leaves.front()).face);
-    patch.reflectance = m.reflectance;
-    patch.emission = m.emission;
-    patch.unshot = m.emission;
-    report_.energy.emitted += m.emission * patch.area;
+    patch.reflectance = Rgb(std::max(m.reflectance.r, options_.min_reflectance),
+                            std::max(m.reflectance.g, options_.min_reflectance),
+                            std::max(m.reflectance.b, options_.min_reflectance));
+    patch.emission = m.emission * options_.emission_scale;
+    patch.unshot = patch.emission;
+    report_.energy.emitted += patch.emission * patch.area;
     total_area_ += patch.area;
     reflectance_area_ += patch.reflectance * patch.area;
   }
+  for (const Luminaire& l : luminaires_) {
+    const double flux = l.flux();
+    if (!(flux >= 0) || !std::isfinite(flux)) throw std::invalid_argument("luminaire " + l.name + " has no valid flux");
+    luminaire_flux_.push_back(flux);
+    luminaire_unshot_ += l.colour * flux;
+  }
+  luminaire_lost_.assign(luminaires_.size(), -1.0);
+  luminaire_escaped_.assign(luminaires_.size(), 0.0);
+  report_.energy.emitted += luminaire_unshot_;
   emitted_total_ = sum(report_.energy.emitted);
   unshot_magnitude_ = emitted_total_;
   if (!(options_.overshoot > 0 && options_.overshoot < 2))
     throw std::invalid_argument("overshoot must lie between 0 and 2 (1: none)");
-  if (!(emitted_total_ > 0)) throw std::invalid_argument("no surface emits light");
+  if (!(emitted_total_ > 0)) throw std::invalid_argument("nothing emits light (no emitting surface, no luminaire)");
   // Facing classes: normals equal to about 1e-9.
   std::map<std::array<long long, 3>, std::uint32_t> planes;
   for (Patch& patch : patches_) {
@@ -120,15 +136,26 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
   gathered_in_.assign(initialised_, 0);
   report_.method = method_name(refine_.method);
   report_.patches = patches_.size();
+  report_.luminaires = luminaires_.size();
 }
 
 Solver::~Solver() = default;
 
 void Solver::survey_patches() {
+  // An open scene (some light has left it): the patches holding unshot light learn
+  // what share of it will leave too (lost_fraction, which their shots need anyway), so
+  // that ambient() does not count light that is on its way out.
+  const bool open = sum(report_.energy.escaped) > 0;
+  if (open) {
+    std::vector<std::uint32_t> unknown;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p)
+      if (patches_[p].lost < 0 && !patches_[p].unshot.is_zero()) unknown.push_back(p);
+    tbb::parallel_for(std::size_t(0), unknown.size(), [&](std::size_t n) { lost_fraction(unknown[n]); });
+  }
   // A deterministic reduction: the same blocks, joined in the same order, for any
   // number of threads, so the sums are too. Ties go to the lower patch index.
   struct Survey {
-    Rgb unshot;
+    Rgb unshot, staying;
     double magnitude = 0, best_power = -1;
     std::uint32_t best = 0;
   };
@@ -138,6 +165,7 @@ void Solver::survey_patches() {
         for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
           const Patch& patch = patches_[p];
           s.unshot += patch.unshot * patch.area;
+          s.staying += patch.unshot * (patch.area * (open && patch.lost >= 0 ? 1 - patch.lost : 1.0));
           const double power = magnitude(patch.unshot) * patch.area;
           s.magnitude += power;
           if (power > s.best_power) {
@@ -149,6 +177,7 @@ void Solver::survey_patches() {
       },
       [](Survey left, const Survey& right) {
         left.unshot += right.unshot;
+        left.staying += right.staying;
         left.magnitude += right.magnitude;
         if (right.best_power > left.best_power) {
           left.best = right.best;
@@ -156,8 +185,9 @@ void Solver::survey_patches() {
         }
         return left;
       });
-  report_.energy.unshot = total.unshot;
-  unshot_magnitude_ = total.magnitude;
+  report_.energy.unshot = total.unshot + luminaire_unshot_;
+  unshot_staying_ = total.staying + luminaire_unshot_;
+  unshot_magnitude_ = total.magnitude + magnitude(luminaire_unshot_);
   brightest_ = total.best;
 }
 
@@ -197,18 +227,45 @@ bool Solver::refinement_allowed() {
 }
 
 Rgb Solver::ambient() const {
-  const Rgb unshot = report_.energy.unshot;  // kept current by survey_patches() and shoot_once()
+  // Unshot power, less what the patches holding it will lose to the outside (see
+  // survey_patches()); kept current by survey_patches() and shoot_once().
+  const Rgb unshot = unshot_staying_;
   const double area = total_area_;
   if (!(area > 0)) return Rgb();
   const Rgb mean_reflectance = reflectance_area_ * (1.0 / area);
-  auto factor = [](double rho) { return rho < 1 ? 1 / (1 - rho) : 0.0; };
+  // In an open scene (a floor under the sky, a facade) part of every bounce leaves.
+  // The unshot power U above is what will land; of its reflection, the share e that
+  // the shots so far lost to the outside is taken to leave too: U lands, rho (1 - e)
+  // U lands again, and so on: the factor 1 / (1 - rho (1 - e)), which is Cohen et
+  // al.'s 1 / (1 - rho) in a closed scene (e = 0).
+  const double shot_so_far = sum(report_.energy.absorbed) + sum(report_.energy.escaped);
+  const double escape = shot_so_far > 0 ? std::clamp(sum(report_.energy.escaped) / shot_so_far, 0.0, 1.0) : 0.0;
+  const double stays = 1 - escape;
+  auto factor = [stays](double rho) { return rho * stays < 1 ? 1 / (1 - rho * stays) : 0.0; };
   return Rgb(unshot.r / area * factor(mean_reflectance.r), unshot.g / area * factor(mean_reflectance.g),
              unshot.b / area * factor(mean_reflectance.b));
 }
 
 void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
-  const Patch& sender = patches_[i];
+  const bool from_luminaire = is_luminaire(i);
+  const Patch& sender = patches_[from_luminaire ? 0 : i];
   const double per_patch = options_.negligible_share / static_cast<double>(patches_.size());
+  // A luminaire: the points that emit (its position, or its opening's corners) and a
+  // bound on the share of its flux a patch of area A at distance d can receive,
+  // I_peak A / (d^2 flux).
+  std::vector<Vec3d> source_points;
+  double source_radius = 0, share_per_solid_angle = 0;
+  if (from_luminaire) {
+    const Luminaire& l = luminaire(i);
+    source_points.push_back(l.position);
+    const double hl = 0.5 * l.opening_length(), hw = 0.5 * l.opening_width();
+    if (hl > 0 || hw > 0)
+      for (double a : {-hl, hl})
+        for (double b : {-hw, hw}) source_points.push_back(l.position + l.c0 * a + l.c90 * b);
+    source_radius = std::sqrt(hl * hl + hw * hw);
+    const double flux = luminaire_flux_[i - patches_.size()];
+    share_per_solid_angle = flux > 0 ? l.peak_intensity() / flux : 0.0;
+  }
   auto in_front = [](const Patch& plane_of, const Patch& other) {
     for (const Vec3d& c : other.corners)
       if (OpenMesh::dot(plane_of.normal, c - plane_of.corners[0]) > 0) return true;
@@ -222,7 +279,24 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
   verdict.assign(patches_.size(), -1.0);
   tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
     if (j == i) return;
-    if (options_.cull) {
+    if (options_.cull && from_luminaire) {
+      const Patch& receiver = patches_[j];
+      // Exact: every point of the source is behind or on the receiver's plane.
+      bool seen = false;
+      for (const Vec3d& p : source_points) seen = seen || OpenMesh::dot(receiver.normal, p - receiver.corners[0]) > 0;
+      if (!seen) {
+        verdict[j] = -2.0;
+        return;
+      }
+      const double d = (receiver.centre - source_points[0]).norm() - receiver.radius - source_radius;
+      if (per_patch > 0 && d > 0) {
+        const double bound = share_per_solid_angle * receiver.area / (d * d);
+        if (bound < per_patch) {
+          verdict[j] = bound;
+          return;
+        }
+      }
+    } else if (options_.cull) {
       const Patch& receiver = patches_[j];
       // Exact: every point of the receiver is behind or on the sender's plane (the
       // sender sends nothing there), or the whole sender is behind or on the receiver's
@@ -273,6 +347,16 @@ double Solver::unshot_fraction() const { return unshot_magnitude_ / emitted_tota
 // pass alone gives it. (An opening below about 1/256 of a sender's cosine-weighted view
 // can go unseen by the first pass, as one below 1/1024 can by the full one.)
 double Solver::lost_fraction(std::uint32_t id) {
+  if (is_luminaire(id)) {  // see survey_luminaire
+    const std::size_t k = id - patches_.size();
+    if (luminaire_lost_[k] < 0) {
+      const int side = std::max(8, static_cast<int>(std::sqrt(4.0 * options_.escape_rays)));
+      const LuminaireSurvey s = survey_luminaire(*visibility_, luminaires_[k], side, mix(options_.seed ^ mix(id)));
+      luminaire_escaped_[k] = s.escaped;
+      luminaire_lost_[k] = s.escaped + s.back;
+    }
+    return luminaire_lost_[k];
+  }
   Patch& p = patches_[id];
   if (p.lost >= 0) return p.lost;
   const Vec3d n = p.normal;
@@ -370,8 +454,54 @@ void Solver::register_receivers(ElementId first) {
   form_factor_shot_.resize(receivers_.size(), 0);
 }
 
+double Solver::luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32_t id, std::uint64_t seed,
+                                     bool rays, double* unoccluded) const {
+  const Luminaire& l = luminaire(id);
+  const double length = l.opening_length(), width = l.opening_width();
+  const double distance = (x - l.position).norm();
+  // Far (the opening below a fifth of the distance, the usual far-field rule): a point.
+  const bool near = std::max(length, width) > 0.2 * distance;
+  const int side = near ? kOpeningSide : 1;
+  const double share = 1.0 / (side * side);
+  Rng rng{seed};
+  double open = 0, seen = 0;
+  for (int a = 0; a < side; ++a)
+    for (int b = 0; b < side; ++b) {
+      Vec3d p = l.position;
+      if (near) {
+        const double u = (a + (rays ? rng.uniform() : 0.5)) / side, w = (b + (rays ? rng.uniform() : 0.5)) / side;
+        if (l.round_opening()) {  // a disc of diameter `length`, equal-area polar strata
+          const double r = 0.5 * length * std::sqrt(u), phi = 2 * M_PI * w;
+          p += l.c0 * (r * std::cos(phi)) + l.c90 * (r * std::sin(phi));
+        } else {
+          p += l.c0 * ((u - 0.5) * length) + l.c90 * ((w - 0.5) * width);
+        }
+      }
+      Vec3d d = x - p;
+      const double r2 = d.sqrnorm();
+      if (!(r2 > 0)) continue;
+      d /= std::sqrt(r2);
+      const double cos_receiver = -OpenMesh::dot(n, d);
+      if (cos_receiver <= 0) continue;
+      const double e = share * l.intensity_towards(d) * cos_receiver / r2;
+      if (!(e > 0)) continue;
+      open += e;
+      if (rays && !visibility_->occluded(x, n, p, d)) seen += e;
+    }
+  if (unoccluded) *unoccluded = open;
+  return rays ? seen : open;
+}
+
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
                                  double* unoccluded) const {
+  if (is_luminaire(sender_id)) {
+    double open = 0;
+    const double seen = luminaire_illuminance(
+        x, normal, sender_id, mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id)),
+        true, &open);
+    if (unoccluded) *unoccluded = open;
+    return seen;
+  }
   const Patch& sender = patches_[sender_id];
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
@@ -398,10 +528,15 @@ double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& no
 
 void Solver::gather_new_elements(std::size_t first) {
   // Earlier shots, and the current one (the sender's unshot was moved to current_shot_).
+  // Luminaires that have shot (the current one included) come first, as they shot.
   std::vector<std::uint32_t> shooters;
+  for (std::size_t k = 0; k < next_luminaire_; ++k) shooters.push_back(static_cast<std::uint32_t>(patches_.size() + k));
   for (std::uint32_t j = 0; j < patches_.size(); ++j)
     if (!patches_[j].shot.is_zero() || j == sender_) shooters.push_back(j);
-  auto shot_of = [this](std::uint32_t j) { return j == sender_ ? patches_[j].shot + current_shot_ : patches_[j].shot; };
+  auto shot_of = [this](std::uint32_t j) {
+    if (is_luminaire(j)) return luminaire(j).colour;
+    return j == sender_ ? patches_[j].shot + current_shot_ : patches_[j].shot;
+  };
   // One gather per receiver of the new elements.
   std::unordered_map<std::uint32_t, std::size_t> index;
   std::vector<std::uint32_t> todo;
@@ -452,6 +587,7 @@ double Solver::element_form_factor(ElementId q) const {
 }
 
 double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
+  if (is_luminaire(sender_)) return luminaire_illuminance(x, n, sender_, 0, false, nullptr);
   const Patch& sender = patches_[sender_];
   if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius)
     return point_to_quartered_triangle(x, n, sender.corners.data(), shape_.weight.data(), sender.normal);
@@ -543,6 +679,21 @@ double Solver::element_reach(ElementId q) const {
 
 void Solver::midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const {
   const Element& el = hierarchy_.element(q);
+  if (is_luminaire(sender_)) {  // the exact illuminance costs no more than a far-field form
+    const Vec3d& n = hierarchy_.normal(q);
+    const Vec3d centroid = hierarchy_.centroid(q);
+    for (int k = 0; k < 3; ++k) {
+      const int l = (k + 1) % 3;
+      const CornerFormFactor& fa = corner_form_factor(q, k);
+      const CornerFormFactor& fb = corner_form_factor(q, l);
+      const double unoccluded = fa.unoccluded + fb.unoccluded;
+      const double visible = unoccluded > 0 ? (fa.visible + fb.visible) / unoccluded : 1.0;
+      Vec3d at = (hierarchy_.position(el.corners[k]) + hierarchy_.position(el.corners[l])) * 0.5;
+      at += (centroid - at) * 1e-2;
+      mid[k] = visible * sender_closed_form(at, n);
+    }
+    return;
+  }
   const Patch& sender = patches_[sender_];
   const Vec3d& n = hierarchy_.normal(q);
   const Vec3d centroid = hierarchy_.centroid(q);
@@ -594,6 +745,23 @@ double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, Orac
     in.pushdown_error = std::max(in.pushdown_error, error);
     in.current_peak = std::max({in.current_peak, a, at_mid});
     mid_sum += mid[k];
+  }
+  if (is_luminaire(sender_)) {
+    // A luminaire's pool of light peaks inside elements, where no edge midpoint sees
+    // it (a point source straight above q): the centroid is checked too, against the
+    // corners' mean, which is what q shows there if the shot stops at it (its exact
+    // illuminance costs no more than a midpoint's).
+    double corners = 0, unoccluded = 0, visible = 0;
+    for (int k = 0; k < 3; ++k) {
+      const CornerFormFactor& f = corner_form_factor(q, k);
+      visible += f.visible;
+      unoccluded += f.unoccluded;
+      corners += in.current[k].luminance();
+    }
+    const double fraction = unoccluded > 0 ? visible / unoccluded : 1.0;
+    const double at_centroid = shot * fraction * sender_closed_form(hierarchy_.centroid(q), hierarchy_.normal(q));
+    in.pushdown_error = std::max(in.pushdown_error, std::abs(at_centroid - corners / 3));
+    in.current_peak = std::max(in.current_peak, at_centroid);
   }
   return mid_sum / 3;
 }
@@ -773,11 +941,14 @@ void Solver::flush_all() {
 // element powers are normalised.
 void Solver::account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
                                std::uint32_t sender_id, const Rgb& shot_radiosity) {
-  Patch& sender = patches_[sender_id];
   const double lost = lost_fraction(sender_id);
+  // What one unit of the shot carries: a patch's area, a luminaire's flux.
+  const bool from_luminaire = is_luminaire(sender_id);
+  const double power = from_luminaire ? luminaire_flux_[sender_id - patches_.size()] : patches_[sender_id].area;
+  const double escaped = from_luminaire ? luminaire_escaped_[sender_id - patches_.size()] : patches_[sender_id].escaped;
   double received = 0;
   for (double r : reach) received += r;  // in order: the same total for any number of threads
-  const double reachable = sender.area * (1 - lost);
+  const double reachable = power * (1 - lost);
   double scale = 0;
   if (received > 0 && reachable > 0) {
     scale = reachable / received;
@@ -810,8 +981,8 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
   book(run_patch, run_reach);
   // What no front face received: out of the scene, or onto black back faces. In a
   // closed scene only rounding is left; it is booked as absorbed.
-  const Rgb not_received = shot_radiosity * sender.area - incident_total;
-  const double escaped_share = lost > 0 ? sender.escaped / lost : 0.0;
+  const Rgb not_received = shot_radiosity * power - incident_total;
+  const double escaped_share = lost > 0 ? escaped / lost : 0.0;
   report_.energy.escaped += not_received * escaped_share;
   report_.energy.absorbed += not_received * (1 - escaped_share);
   survey_patches();
@@ -823,7 +994,13 @@ Solver::Output Solver::output(bool ambient_display) {
   out.split = split_vertices(scene_, options_.crease_angle);
   out.radiosity.assign(out.split.size(), Rgb());
   out.emitter.assign(out.split.size(), 0);
+  out.irradiance.assign(out.split.size(), Rgb());
   std::vector<int> count(out.split.size(), 0);
+  auto arriving = [](const Rgb& b, const Patch& p) {
+    auto channel = [](double value, double e, double rho) { return rho > 0 ? (value - e) / rho : 0.0; };
+    return Rgb(channel(b.r, p.emission.r, p.reflectance.r), channel(b.g, p.emission.g, p.reflectance.g),
+               channel(b.b, p.emission.b, p.reflectance.b));
+  };
   const TriMesh& mesh = scene_.mesh();
   const Rgb ambient_now = ambient_display ? ambient() : Rgb();
   for (auto f : mesh.faces()) {
@@ -834,13 +1011,19 @@ Solver::Output Solver::output(bool ambient_display) {
     for (auto v : mesh.fv_range(f)) {
       const auto node = out.split.corner[3 * f.idx() + k++];
       for (int j = 0; j < 3; ++j)
-        if (el.corners[j] == v) out.radiosity[node] += value_[e][j] + extra;
+        if (el.corners[j] == v) {
+          out.radiosity[node] += value_[e][j] + extra;
+          out.irradiance[node] += arriving(value_[e][j] + extra, patches_[el.patch]);
+        }
       ++count[node];
       out.emitter[node] = scene_.material(f).emits();
     }
   }
   for (std::size_t i = 0; i < count.size(); ++i)
-    if (count[i] > 0) out.radiosity[i] = out.radiosity[i] * (1.0 / count[i]);
+    if (count[i] > 0) {
+      out.radiosity[i] = out.radiosity[i] * (1.0 / count[i]);
+      out.irradiance[i] = out.irradiance[i] * (1.0 / count[i]);
+    }
   return out;
 }
 

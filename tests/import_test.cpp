@@ -12,6 +12,12 @@
 namespace dynrad {
 namespace {
 
+ReadOptions strict_reading() {
+  ReadOptions options;
+  options.strict = true;
+  return options;
+}
+
 using test::TempDir;
 
 const char* kMtl =
@@ -249,7 +255,7 @@ TEST(ImportScene, MaterialUsedInOneFileIsDefinedByAnother) {
   dir.write("b.mtl", "newmtl wall\nKd 0.3 0.3 0.3\n");
   dir.write("b.obj", "mtllib b.mtl\nv 0 0 1\nv 1 0 1\nv 0 1 1\nusemtl wall\nf 1 2 3\n");
   const PolygonSoup soup =
-      read_input(dir.write("ab.json", R"({"meshes": [{"file": "a.obj"}, {"file": "b.obj"}]})"), ReadOptions{true});
+      read_input(dir.write("ab.json", R"({"meshes": [{"file": "a.obj"}, {"file": "b.obj"}]})"), strict_reading());
   ASSERT_EQ(soup.polygons.size(), 2u);
   for (auto m : soup.material) EXPECT_NEAR(soup.materials[m].reflectance.g, 0.3, 1e-12);
   EXPECT_TRUE(soup.warnings.empty());

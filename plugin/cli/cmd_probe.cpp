@@ -66,6 +66,10 @@ struct LitMesh {
   std::vector<Vec3d> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<Rgb> radiosity;
+  // Photometric solves (a scene with luminaires) also write illuminance (lx) and
+  // luminance (cd/m^2) per vertex; probe then reads those.
+  bool photometric = false;
+  std::vector<double> illuminance, luminance;
   std::vector<std::uint32_t> place, around_start, around;
   double diagonal = 0;
 };
@@ -85,6 +89,14 @@ LitMesh read_lit(const std::string& path) {
           path, 0,
           std::string("has no '") + names[c] + "' vertex property; probe reads PLY files written by dynrad solve.");
   LitMesh lit;
+  OpenMesh::VPropHandleT<float> illuminance, luminance;
+  lit.photometric =
+      mesh.get_property_handle(illuminance, "illuminance") && mesh.get_property_handle(luminance, "luminance");
+  if (lit.photometric)
+    for (auto v : mesh.vertices()) {
+      lit.illuminance.push_back(mesh.property(illuminance, v));
+      lit.luminance.push_back(mesh.property(luminance, v));
+    }
   Bounds bounds;
   for (auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
@@ -192,6 +204,7 @@ struct Hit {
   Vec3d face_normal;
   double distance = 0;
   Rgb radiosity;
+  double illuminance = 0, luminance = 0;  // photometric PLY only
 };
 
 std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index, const CalculationPoint& p,
@@ -265,6 +278,10 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
   hit.point = a * wa + b * u + c * w;
   hit.distance = std::max(0.0, distance - lift);
   hit.radiosity = lit.radiosity[t[0]] * wa + lit.radiosity[t[1]] * u + lit.radiosity[t[2]] * w;
+  if (lit.photometric) {
+    hit.illuminance = lit.illuminance[t[0]] * wa + lit.illuminance[t[1]] * u + lit.illuminance[t[2]] * w;
+    hit.luminance = lit.luminance[t[0]] * wa + lit.luminance[t[1]] * u + lit.luminance[t[2]] * w;
+  }
   return hit;
 }
 
@@ -347,8 +364,14 @@ int run_probe(const ProbeOptions& options) {
 
   nlohmann::json rows = nlohmann::json::array();
   std::ostringstream table;
-  const bool irradiance_known = constant_reflectance || model;
-  table << fmt::format("{:>4} {:>30} {:>9} {:>32} {:>10}", "#", "point", "distance", "radiosity r g b (W/m2)", "B lum");
+  const bool photometric = lit.photometric;
+  // Photometric: the PLY holds illuminance itself; no model or reflectance needed.
+  const bool irradiance_known = !photometric && (constant_reflectance || model);
+  if (photometric)
+    table << fmt::format("{:>4} {:>30} {:>9} {:>14} {:>14}", "#", "point", "distance", "E (lx)", "L (cd/m2)");
+  else
+    table << fmt::format("{:>4} {:>30} {:>9} {:>32} {:>10}", "#", "point", "distance", "radiosity r g b (W/m2)",
+                         "B lum");
   if (irradiance_known) table << fmt::format(" {:>32} {:>10}", "irradiance r g b (W/m2)", "H lum");
   table << "\n";
   std::size_t missed = 0;
@@ -374,6 +397,13 @@ int run_probe(const ProbeOptions& options) {
     row["distance"] = hit->distance;
     row["radiosity"] = rgb_json(hit->radiosity);
     row["radiosity_luminance"] = hit->radiosity.luminance();
+    if (photometric) {
+      row["illuminance"] = hit->illuminance;
+      row["luminance"] = hit->luminance;
+      table << fmt::format(" {:>9.4g} {:>14.5g} {:>14.5g}\n", hit->distance, hit->illuminance, hit->luminance);
+      rows.push_back(row);
+      continue;
+    }
     table << fmt::format(" {:>9.4g} {:>10.4g} {:>10.4g} {:>10.4g} {:>10.4g}", hit->distance, hit->radiosity.r,
                          hit->radiosity.g, hit->radiosity.b, hit->radiosity.luminance());
     if (irradiance_known) {
@@ -427,7 +457,8 @@ int run_probe(const ProbeOptions& options) {
   std::string text;
   if (options.json) {
     nlohmann::json j = {{"lit", options.lit},
-                        {"units", "W/m2; irradiance H = (B - E) / reflectance"},
+                        {"units", photometric ? "photometric: radiosity lm/m2, illuminance lx, luminance cd/m2"
+                                              : "W/m2; irradiance H = (B - E) / reflectance"},
                         {"irradiance_from", model                  ? "model " + options.model
                                             : constant_reflectance ? std::string("--reflectance")
                                                                    : std::string("none")},

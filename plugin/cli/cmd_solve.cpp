@@ -10,7 +10,9 @@
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/png.h"
+#include "radiosity/luminaire.h"
 #include "radiosity/preview.h"
+#include "radiosity/visibility.h"
 #include "radiosity/settings.h"
 #include "radiosity/solver.h"
 #include "radiosity/tonemap.h"
@@ -51,6 +53,8 @@ struct SolveCliOptions {
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
+  // "auto": photometric (lux, cd/m^2) when the scene has luminaires, else radiometric.
+  std::string units = "auto";
   rad::SolveOptions solve;
 };
 
@@ -156,10 +160,33 @@ int run_solve(SolveCliOptions& options) {
     spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", scene.simplify.faces_before,
                  scene.simplify.faces_after, scene.simplify.seconds);
   SceneMesh& mesh = *scene.mesh;
-  if (!(mesh.emitting_area() > 0))
+  std::vector<rad::Luminaire> luminaires = rad::read_luminaires(options.load.input);
+  if (!(mesh.emitting_area() > 0) && luminaires.empty())
     throw InputError(options.load.input, 0,
-                     "no face emits light, so everything would be black. Give a material an emission: Ke in the "
-                     ".mtl file, or \"emission\" in a scene file's materials.");
+                     "no face emits light and there is no luminaire, so everything would be black. Place "
+                     "luminaires (\"luminaires\" in a scene file), or give a material an emission: Ke in the .mtl "
+                     "file, or \"emission\" in a scene file's materials.");
+  bool photometric = !luminaires.empty();
+  if (options.units == "photometric") {
+    photometric = true;
+  } else if (options.units == "radiometric") {
+    if (!luminaires.empty())
+      throw InputError("--units", 0,
+                       "radiometric units cannot be used with luminaires, whose photometry is in candela and lumens. "
+                       "Leave --units out (photometric) or remove the luminaires.");
+    photometric = false;
+  } else if (options.units != "auto") {
+    throw InputError("--units", 0, "'" + options.units + "' is not a unit system; available: auto, photometric, radiometric.");
+  }
+  if (photometric) {
+    options.solve.emission_scale = rad::kLumensPerWatt;
+    options.solve.min_reflectance = 1e-4;
+  }
+  for (const rad::Luminaire& l : luminaires) spdlog::info("luminaire {}", l.describe());
+  if (!luminaires.empty()) {
+    const rad::Visibility visibility(mesh);
+    for (const std::string& w : rad::luminaire_warnings(visibility, luminaires)) spdlog::warn("{}", w);
+  }
   // Settings from the model and the quality (radiosity/settings.h); every option given
   // overrides.
   rad::SettingsRequest request;
@@ -195,7 +222,7 @@ int run_solve(SolveCliOptions& options) {
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  rad::Solver solver(mesh, hierarchy, options.solve, refine);
+  rad::Solver solver(mesh, hierarchy, options.solve, refine, luminaires);
   running = &solver;
   const rad::SolveReport report = solver.run();
   progress.finish();
@@ -208,6 +235,18 @@ int run_solve(SolveCliOptions& options) {
   for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !result.emitter[x];
   const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(result.radiosity, lit);
   VertexValues values = rad::tone_map(result.radiosity, exposure, "radiosity");
+  if (photometric) {
+    // Illuminance (lx) arriving and luminance (cd/m^2) leaving, L = B / pi for a
+    // diffuse surface; MeshLab's `quality` shows the illuminance.
+    std::vector<float> illuminance(result.irradiance.size()), luminance(result.radiosity.size());
+    for (std::size_t v = 0; v < illuminance.size(); ++v) {
+      illuminance[v] = static_cast<float>(result.irradiance[v].luminance());
+      luminance[v] = static_cast<float>(result.radiosity[v].luminance() / M_PI);
+    }
+    values.quality = illuminance;
+    values.scalars.emplace_back("illuminance", std::move(illuminance));
+    values.scalars.emplace_back("luminance", std::move(luminance));
+  }
   WriteOptions write;
   write.ascii = options.ascii;
   write_mesh_with_values(options.output, mesh, result.split, values, write);
@@ -227,7 +266,8 @@ int run_solve(SolveCliOptions& options) {
                report.iterations, report.seconds, report.stopped_by, 100 * report.unshot_fraction,
                100 * report.estimated_error.total(), 100 * report.estimated_error.unshot,
                100 * report.estimated_error.discretisation, report.visibility_rays, exposure);
-  spdlog::info("energy: emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
+  spdlog::info("energy ({}): emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
+               photometric ? "lm" : "W if the model is in metres",
                e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
                e.escaped.r + e.escaped.g + e.escaped.b, e.unshot.r + e.unshot.g + e.unshot.b);
   spdlog::info("wrote {} ({} vertices, {} triangles, {} elements)", options.output, result.split.size(),
@@ -239,6 +279,14 @@ int run_solve(SolveCliOptions& options) {
     j["input"] = options.load.input;
     j["output"] = options.output;
     j["method"] = report.method;
+    j["units"] = photometric ? "photometric" : "radiometric";
+    j["luminaires"] = nlohmann::json::array();
+    for (const rad::Luminaire& l : luminaires)
+      j["luminaires"].push_back({{"name", l.name},
+                                 {"flux", l.flux()},
+                                 {"position", {l.position[0], l.position[1], l.position[2]}},
+                                 {"aim", {l.nadir[0], l.nadir[1], l.nadir[2]}},
+                                 {"description", l.describe()}});
     j["iterations"] = report.iterations;
     j["energy_transfers"] = report.energy_transfers;
     j["patch_element_transfers"] = report.patch_element_transfers;
@@ -395,6 +443,11 @@ Command add_solve_command(CLI::App& app) {
                    "Add (the default) or leave out the ambient estimate of light not yet shot in the written values "
                    "(Cohen et al. 1988)");
   command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
+  command->add_option("--units", options->units,
+                      "auto, photometric or radiometric. Photometric (the default when the scene has luminaires): "
+                      "lumens, lux and cd/m^2; emitting faces' W/m^2 are converted at 179 lm/W. The PLY then also "
+                      "holds float 'illuminance' (lx, also in 'quality') and 'luminance' (cd/m^2)")
+      ->capture_default_str();
   command->add_option("--preview", options->preview, "Also render a PNG picture of the result");
   command->add_option("--preview-width", options->preview_width, "Width of the preview in pixels")
       ->capture_default_str()

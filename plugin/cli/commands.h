@@ -43,6 +43,7 @@ struct LoadOptions {
   ReadOptions read() const {
     ReadOptions options;
     options.strict = strict;
+    options.other_scene_keys = {"luminaires"};  // read by rad::read_luminaires
     return options;
   }
 };

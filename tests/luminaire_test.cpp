@@ -1,0 +1,248 @@
+// Luminaires against closed forms (lighting-practice.md, "Closed forms for tests"):
+// the solver's illuminance on surfaces, with the settings `dynrad solve` chooses, at
+// points the test picks, against formulas evaluated here.
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/luminaire.h"
+#include "radiosity/probe.h"
+#include "radiosity/settings.h"
+#include "radiosity/solver.h"
+#include "scene_builder.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace dynrad {
+namespace {
+
+using rad::Luminaire;
+using test::SceneBuilder;
+
+constexpr double kDegree = M_PI / 180.0;
+
+struct Lit {
+  LoadedScene scene;
+  std::unique_ptr<ElementHierarchy> hierarchy;
+  std::unique_ptr<rad::Solver> solver;
+  rad::Solver::Output output;
+  rad::SolveReport report;
+
+  // Illuminance (lx) at a point of a surface facing `normal`.
+  double illuminance(const Vec3d& p, const Vec3d& normal) const {
+    const auto e = rad::probe(*scene.mesh, output.split, output.irradiance, p, normal);
+    EXPECT_TRUE(e.has_value()) << "no surface at (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+    return e ? e->luminance() : -1.0;
+  }
+};
+
+// As `dynrad solve` does for a scene with luminaires: the chosen settings, photometric
+// units. `tweak` may change the solve options after the settings are applied.
+Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
+          const std::function<void(rad::SolveOptions&)>& tweak = {}) {
+  Lit lit;
+  lit.scene = load_soup(b.soup(), "luminaire test");
+  SceneMesh& mesh = *lit.scene.mesh;
+  rad::RefineSettings refine;
+  refine.method = rad::Method::dynamic;
+  rad::SolveOptions options;
+  options.ambient_display = true;
+  options.emission_scale = rad::kLumensPerWatt;
+  options.min_reflectance = 1e-4;
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
+  if (tweak) tweak(options);
+  make_patches(mesh, applied.patch_size);
+  lit.hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(applied.patch_size));
+  lit.solver = std::make_unique<rad::Solver>(mesh, *lit.hierarchy, options, refine, std::move(luminaires));
+  lit.report = lit.solver->run();
+  lit.output = lit.solver->output();
+  return lit;
+}
+
+Luminaire point_source(const Vec3d& at, double candela) {
+  Luminaire l;
+  l.kind = Luminaire::Kind::point;
+  l.name = "P";
+  l.position = at;
+  l.intensity = candela;
+  return l;
+}
+
+// 50 points on the floor out to `radius` from the foot of the source, on a golden-angle
+// spiral (every distance and direction once).
+std::vector<Vec3d> spiral(double radius, double z) {
+  std::vector<Vec3d> points;
+  for (int i = 0; i < 50; ++i) {
+    const double r = radius * i / 49.0, a = i * 2.399963;
+    points.emplace_back(r * std::cos(a), r * std::sin(a), z);
+  }
+  return points;
+}
+
+void expect_balanced(const rad::SolveReport& report) {
+  const auto& e = report.energy;
+  const double emitted = e.emitted.luminance();
+  EXPECT_NEAR((e.absorbed + e.escaped + e.unshot).luminance(), emitted, 1e-9 * emitted);
+}
+
+// E = I cos^3(theta) / h^2 under an isotropic 100 cd source 2 m above a 40 m floor.
+TEST(Luminaire, PointSourceOverAFloorGivesICosCubedOverHSquared) {
+  SceneBuilder b;
+  b.rectangle(-20, -20, 20, 20, 0, +1, b.material("floor", 0.5));
+  const Lit lit = solve(b, {point_source({0, 0, 2}, 100)});
+  double worst = 0;
+  for (const Vec3d& p : spiral(4, 0)) {
+    const double r2 = p[0] * p[0] + p[1] * p[1];
+    const double exact = 100 * 2 / std::pow(4 + r2, 1.5);
+    const double e = lit.illuminance(p, {0, 0, 1});
+    worst = std::max(worst, std::abs(e / exact - 1));
+    EXPECT_NEAR(e, exact, 0.005 * exact) << "at r = " << std::sqrt(r2);
+  }
+  std::printf("point source: worst %.3f%% of 50 points, %zu elements\n", 100 * worst, lit.report.elements);
+  expect_balanced(lit.report);
+  // Half of 4 pi 100 lm goes up and leaves; of the rest, all but what falls beyond the
+  // floor's edge lands, and half of that is reflected up and leaves.
+  EXPECT_NEAR(lit.report.energy.emitted.luminance(), 400 * M_PI, 1e-9);
+}
+
+// A Lambertian (cosine-law) luminaire: I = I0 cos(gamma) downwards, so at a floor
+// point E = I0 cos(gamma) cos(theta) / d^2 = I0 h^2 / d^4; its flux is pi I0.
+TEST(Luminaire, CosineLawLuminaireOverAFloor) {
+  auto photometry = std::make_shared<rad::Photometry>();
+  photometry->file = "cosine (built in the test)";
+  photometry->format = "test";
+  photometry->c_angles = {0};
+  for (int g = 0; g <= 90; g += 5) {
+    photometry->gamma_angles.push_back(g);
+    photometry->candela.push_back(1000 * std::cos(g * kDegree));
+  }
+  photometry->flux = rad::integrate_flux(*photometry);
+  EXPECT_NEAR(photometry->flux, 1000 * M_PI, 1e-3 * 1000 * M_PI);
+  Luminaire l;
+  l.kind = Luminaire::Kind::photometric;
+  l.name = "cosine";
+  l.photometry = photometry;
+  l.position = {0.5, -0.25, 2.5};
+  rad::aim_luminaire(l, {0, 0, -1}, 0);
+  SceneBuilder b;
+  b.rectangle(-20, -20, 20, 20, 0, +1, b.material("floor", 0.3));
+  const Lit lit = solve(b, {l});
+  for (const Vec3d& q : spiral(4, 0)) {
+    const Vec3d p = q + Vec3d(0.5, -0.25, 0);
+    const double d2 = (p - l.position).sqrnorm();
+    const double exact = 1000 * 2.5 * 2.5 / (d2 * d2);
+    EXPECT_NEAR(lit.illuminance(p, {0, 0, 1}), exact, 0.005 * exact) << "at (" << p[0] << ", " << p[1] << ")";
+  }
+  expect_balanced(lit.report);
+}
+
+// Energy in a closed box of one reflectance: everything the source sends is absorbed
+// in the end, so the area-mean illuminance is flux / (A (1 - rho)) for any shape.
+TEST(Luminaire, ClosedBoxAbsorbsTheFluxAndMeanIlluminanceIsFluxOverAOneMinusRho) {
+  const double rho = 0.6;
+  SceneBuilder b;
+  b.box({0, 0, 0}, {4, 3, 2.7}, b.material("walls", rho), SceneBuilder::inward);
+  const Luminaire source = point_source({1.3, 1.1, 2.2}, 100);
+  const Lit lit = solve(b, {source}, [](rad::SolveOptions& o) {
+    o.error_target = 0;
+    o.converge = 1e-5;  // the whole of the light, not an estimate of the rest
+  });
+  const double flux = 4 * M_PI * 100;
+  EXPECT_NEAR(lit.report.energy.absorbed.luminance(), flux, 2e-4 * flux);
+  expect_balanced(lit.report);
+  // The area mean of the output's illuminance, each triangle by its corners' mean.
+  const TriMesh& mesh = lit.scene.mesh->mesh();
+  double area = 0, integral = 0;
+  for (auto f : mesh.faces()) {
+    double sum = 0;
+    for (int k = 0; k < 3; ++k) sum += lit.output.irradiance[lit.output.split.corner[3 * f.idx() + k]].luminance();
+    const double a = lit.scene.mesh->area(f);
+    area += a;
+    integral += a * sum / 3;
+  }
+  const double expected = flux / (area * (1 - rho));
+  EXPECT_NEAR(integral / area, expected, 0.005 * expected);
+  std::printf("closed box: mean E %.4f lx, flux / (A (1 - rho)) %.4f lx\n", integral / area, expected);
+}
+
+// A square plate 0.5 m above the floor under a source 1.5 m above it: no direct light
+// in its umbra (the luminaire's shot alone); outside the shadow, the closed form.
+TEST(Luminaire, PlateCastsAnUmbraWithNoDirectLight) {
+  SceneBuilder b;
+  const std::uint32_t grey = b.material("grey", 0.5);
+  b.rectangle(-10, -10, 10, 10, 0, +1, grey);
+  b.box({-0.5, -0.5, 0.5}, {0.5, 0.5, 0.52}, grey);
+  const Lit lit = solve(b, {point_source({0, 0, 2}, 100)}, [](rad::SolveOptions& o) {
+    o.max_iterations = 1;  // direct light only
+    o.ambient_display = false;
+  });
+  // Umbra: the plate's shadow from a point 2 m up is the square scaled by 2 / 1.48.
+  const double half = 0.5 * 2 / 1.48;
+  int umbra = 0, lit_points = 0;
+  for (double x = -2.4; x <= 2.4; x += 0.15)
+    for (double y = -2.4; y <= 2.4; y += 0.15) {
+      const double e = lit.illuminance({x, y, 0}, {0, 0, 1});
+      const double m = std::max(std::abs(x), std::abs(y));
+      if (m < half - 0.12) {
+        EXPECT_EQ(e, 0.0) << "direct light in the umbra at (" << x << ", " << y << ")";
+        ++umbra;
+      } else if (m > half + 0.12) {
+        const double exact = 100 * 2 / std::pow(4 + x * x + y * y, 1.5);
+        EXPECT_NEAR(e, exact, 0.01 * exact) << "at (" << x << ", " << y << ")";
+        ++lit_points;
+      }
+    }
+  EXPECT_GT(umbra, 20);
+  EXPECT_GT(lit_points, 500);
+}
+
+// A spot: full intensity within its inner cone, none beyond the outer one.
+TEST(Luminaire, SpotLightsItsConeOnly) {
+  Luminaire spot;
+  spot.kind = Luminaire::Kind::spot;
+  spot.name = "spot";
+  spot.position = {0, 0, 3};
+  spot.intensity = 500;
+  spot.inner = 20;
+  spot.outer = 30;
+  rad::aim_luminaire(spot, {0, 0, -1}, 0);
+  SceneBuilder b;
+  b.rectangle(-10, -10, 10, 10, 0, +1, b.material("floor", 0.0));
+  const Lit lit = solve(b, {spot});
+  for (double r = 0; r < 3; r += 0.1) {
+    const double gamma = std::atan2(r, 3) / kDegree;
+    const double e = lit.illuminance({r * std::cos(1.0), r * std::sin(1.0), 0}, {0, 0, 1});
+    const double full = 500 * 3 / std::pow(9 + r * r, 1.5);
+    if (gamma < 19) {
+      EXPECT_NEAR(e, full, 0.005 * full) << "inside the inner cone, r = " << r;
+    } else if (gamma > 31) {
+      EXPECT_LT(e, 1e-3 * full) << "beyond the outer cone, r = " << r;
+    }
+  }
+  // Its flux: 2 pi I (1 - cos 20 deg) plus the smooth edge's share, between that and
+  // the outer cone's.
+  EXPECT_GT(spot.flux(), 2 * M_PI * 500 * (1 - std::cos(20 * kDegree)));
+  EXPECT_LT(spot.flux(), 2 * M_PI * 500 * (1 - std::cos(30 * kDegree)));
+}
+
+// The frame: aimed down with spin 0, C0 is +x and C90 is +y; spin turns C0 towards
+// C90; an aim along x still gives a right-handed frame.
+TEST(Luminaire, FrameFollowsAimAndSpin) {
+  Luminaire l;
+  rad::aim_luminaire(l, {0, 0, -2}, 0);
+  EXPECT_NEAR((l.c0 - Vec3d(1, 0, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR((l.c90 - Vec3d(0, 1, 0)).norm(), 0, 1e-12);
+  rad::aim_luminaire(l, {0, 0, -1}, 90);
+  EXPECT_NEAR((l.c0 - Vec3d(0, 1, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR((l.c90 - Vec3d(-1, 0, 0)).norm(), 0, 1e-12);
+  rad::aim_luminaire(l, {1, 0, 0}, 0);
+  EXPECT_NEAR(OpenMesh::dot(l.c0, l.nadir), 0, 1e-12);
+  EXPECT_NEAR(OpenMesh::dot(OpenMesh::cross(l.c0, l.c90), -l.nadir), 1, 1e-12);
+  EXPECT_NEAR(l.tilt, 90, 1e-9);
+  EXPECT_THROW(rad::aim_luminaire(l, {0, 0, 0}, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dynrad
