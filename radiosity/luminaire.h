@@ -86,9 +86,10 @@ struct LuminaireSurvey {
 };
 LuminaireSurvey survey_luminaire(const Visibility& visibility, const Luminaire& l, int side, std::uint64_t seed);
 
-// Warnings a user should read, naming each luminaire: inside a solid or behind a
-// surface (most of its flux meets the backs of faces), aimed at nothing (most of it
-// leaves the model), no light at all.
+// Warnings a user should read: each photometric file's own (once per file), then per
+// luminaire, by name: inside a solid or behind a surface (more than half its flux
+// meets the backs of faces), aimed at nothing (more than three quarters of it leaves
+// the model: a point source over an open floor loses half), no light at all.
 std::vector<std::string> luminaire_warnings(const Visibility& visibility, const std::vector<Luminaire>& luminaires);
 
 }  // namespace dynrad::rad

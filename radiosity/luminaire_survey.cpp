@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <set>
 
 namespace dynrad::rad {
 
@@ -62,6 +63,11 @@ LuminaireSurvey survey_luminaire(const Visibility& visibility, const Luminaire& 
 
 std::vector<std::string> luminaire_warnings(const Visibility& visibility, const std::vector<Luminaire>& luminaires) {
   std::vector<std::string> out;
+  // The photometric files' own warnings, once per file.
+  std::set<const Photometry*> files;
+  for (const Luminaire& l : luminaires)
+    if (l.photometry && files.insert(l.photometry.get()).second)
+      out.insert(out.end(), l.photometry->warnings.begin(), l.photometry->warnings.end());
   for (const Luminaire& l : luminaires) {
     if (!(l.flux() > 0)) {
       out.push_back(fmt::format("luminaire {} sends no light (its flux is 0).", l.name));
@@ -73,7 +79,7 @@ std::vector<std::string> luminaire_warnings(const Visibility& visibility, const 
           "luminaire {} at ({:.4g}, {:.4g}, {:.4g}) is inside a solid or behind a surface: {:.0f}% of its flux meets "
           "the back of a face. Move it into the room (a ceiling luminaire: just below the ceiling).",
           l.name, l.position[0], l.position[1], l.position[2], 100 * s.back));
-    else if (s.escaped > 0.5)
+    else if (s.escaped > 0.75)
       out.push_back(fmt::format(
           "luminaire {} is aimed at nothing: {:.0f}% of its flux leaves the model. Check its \"aim\" (where its "
           "nadir points) and position.",

@@ -2,7 +2,9 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
+#include "radiosity/luminaire.h"
 #include "radiosity/settings.h"
+#include "radiosity/visibility.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -37,6 +39,15 @@ int run_info(const InfoOptions& options) {
   const PatchingReport patching = make_patches(mesh, patch_size);
   const CleanupReport& r = scene.cleanup;
   const Bounds b = mesh.bounds();
+  // Luminaires of a scene file, and what a user should know about their placement.
+  const std::vector<rad::Luminaire> luminaires = rad::read_luminaires(options.load.input);
+  std::vector<std::string> luminaire_warnings;
+  if (!luminaires.empty()) {
+    const rad::Visibility visibility(mesh);
+    luminaire_warnings = rad::luminaire_warnings(visibility, luminaires);
+  }
+  double luminaire_flux = 0;
+  for (const rad::Luminaire& l : luminaires) luminaire_flux += l.flux();
 
   // Per-material statistics over the cleaned triangles.
   struct Usage {
@@ -106,7 +117,32 @@ int run_info(const InfoOptions& options) {
                                 {"faces", usage[m].faces},
                                 {"area", usage[m].area}});
     }
-    j["warnings"] = scene.warnings;
+    j["luminaires"] = nlohmann::json::array();
+    for (const rad::Luminaire& l : luminaires) {
+      nlohmann::json e = {{"name", l.name},
+                          {"type", l.kind == rad::Luminaire::Kind::photometric ? "photometric"
+                                   : l.kind == rad::Luminaire::Kind::spot      ? "spot"
+                                                                                 : "point"},
+                          {"flux", l.flux()},
+                          {"position", {l.position[0], l.position[1], l.position[2]}},
+                          {"aim", {l.nadir[0], l.nadir[1], l.nadir[2]}},
+                          {"spin", l.spin},
+                          {"peak_intensity", l.peak_intensity()},
+                          {"maintenance_factor", l.maintenance_factor}};
+      if (l.photometry) {
+        e["photometry"] = {{"file", l.photometry->file},
+                           {"format", l.photometry->format},
+                           {"name", l.photometry->name},
+                           {"file_flux", l.photometry->flux},
+                           {"symmetry", l.photometry->symmetry},
+                           {"warnings", l.photometry->warnings}};
+      }
+      j["luminaires"].push_back(e);
+    }
+    j["luminaire_flux"] = luminaire_flux;
+    std::vector<std::string> warnings = scene.warnings;
+    warnings.insert(warnings.end(), luminaire_warnings.begin(), luminaire_warnings.end());
+    j["warnings"] = warnings;
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
@@ -148,8 +184,14 @@ int run_info(const InfoOptions& options) {
                                mat.emission.b);
     std::cout << fmt::format("  {} faces, area {:.6g}\n", usage[m].faces, usage[m].area);
   }
-  if (mesh.emitting_area() == 0) std::cout << "note            no emitting faces: a solve would have no light.\n";
+  if (!luminaires.empty()) {
+    std::cout << fmt::format("luminaires      {}, {:.6g} lm in total\n", luminaires.size(), luminaire_flux);
+    for (const rad::Luminaire& l : luminaires) std::cout << "  " << l.describe() << "\n";
+  }
+  if (mesh.emitting_area() == 0 && luminaires.empty())
+    std::cout << "note            no emitting faces and no luminaires: a solve would have no light.\n";
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  for (const auto& w : luminaire_warnings) spdlog::warn("{}", w);
   return kExitOk;
 }
 

@@ -10,11 +10,14 @@
 // scratch directory under $TMPDIR first:
 //   obj    the input up to a line "~MTL~" is model.obj, the rest (if any) model.mtl;
 //   scene  the input is scene.json, next to fixed mesh files it may refer to
-//          (room.obj + room.mtl, panel.off, box.ply, tri.stl; see write_scene_meshes).
+//          (room.obj + room.mtl, panel.off, box.ply, tri.stl, downlight.ies; see
+//          write_scene_meshes).
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/luminaire.h"
 #include "radiosity/solver.h"
+#include "radiosity/visibility.h"
 
 #include <cmath>
 #include <cstdint>
@@ -59,6 +62,8 @@ void write_scene_meshes(const fs::path& dir) {
              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
              "element face 2\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
              "property uchar blue\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 200 100 50\n3 0 2 3 10 20 30\n");
+  write_file(dir / "downlight.ies",
+             "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0.1 0.1 0\n1 1 0\n0 45 90\n0\n1000 700 0\n");
   write_file(dir / "tri.stl",
              "solid tri\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
              "endfacet\nendsolid tri\n");
@@ -109,9 +114,15 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
-  LoadedScene scene = load_scene(path);
+  ReadOptions read;
+  read.other_scene_keys = {"luminaires"};  // as the command line reads scenes
+  LoadedScene scene = load_scene(path, {}, {}, read);
   SceneMesh& mesh = *scene.mesh;
-  if (!(mesh.emitting_area() > 0)) return;  // the command line refuses this (exit 2)
+  // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;
+  // here a scene may name downlight.ies, written beside it).
+  std::vector<rad::Luminaire> luminaires = rad::read_luminaires(path);
+  if (luminaires.size() > 16) luminaires.resize(16);  // arrays: a few shots cover the paths
+  if (!(mesh.emitting_area() > 0) && luminaires.empty()) return;  // the command line refuses this (exit 2)
   // Coarse patches and a few shots: the point is every code path, not accuracy.
   const double patch_size = 4 * default_patch_size(mesh);
   make_patches(mesh, patch_size);
@@ -124,7 +135,13 @@ void load_and_solve(const std::string& path) {
   rad::RefineSettings refine;
   refine.method = rad::Method::dynamic;
   refine.max_level = 1;
-  rad::Solver solver(mesh, hierarchy, options, refine);
+  if (!luminaires.empty()) {
+    options.emission_scale = rad::kLumensPerWatt;
+    options.min_reflectance = 1e-4;
+    const rad::Visibility visibility(mesh);
+    (void)rad::luminaire_warnings(visibility, luminaires);
+  }
+  rad::Solver solver(mesh, hierarchy, options, refine, luminaires);
   solver.run();
   for (const Rgb& b : solver.output().radiosity)
     if (!b.is_finite()) bug("a vertex radiosity is not finite");
