@@ -38,14 +38,7 @@ targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene ies ldt)
 
 scripts/install-deps.sh
-# Debug keeps assertions (internal invariants) on; -O1 keeps the build and runs fast.
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DDYNRAD_FUZZ=ON \
-  -DDYNRAD_BUILD_TESTS=OFF -DDYNRAD_BUILD_BENCH=OFF > build-fuzz-configure.log || {
-  cat build-fuzz-configure.log
-  exit 1
-}
-rm -f build-fuzz-configure.log
+scripts/configure-reliability.sh
 cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 # Seeds: hand-made files for every format and variant, plus the samples (OBJ with

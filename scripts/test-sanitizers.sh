@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds the test
-# programs (dynrad_tests, path_tracer_tests) and the dynrad command line they run (gcc,
-# -O1, assertions on) into build-asan, then runs the tests with ctest. The first sanitizer error fails its test
+# programs (dynrad_tests, path_tracer_tests) and the dynrad command line they run (clang,
+# -O1, assertions on) into build-fuzz, then runs the tests with ctest. The first sanitizer error fails its test
 # (halt_on_error; the dynrad processes the tests start inherit the same options).
 #
 #   scripts/test-sanitizers.sh        # every test (about an hour on 2 cores)
@@ -35,15 +35,14 @@ elif [ $# -gt 0 ]; then
   exit 2
 fi
 scripts/install-deps.sh
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DDYNRAD_SANITIZE=ON -DDYNRAD_BUILD_TESTS=ON -DDYNRAD_BUILD_BENCH=OFF > build-asan-configure.log || {
-  cat build-asan-configure.log
-  exit 1
-}
-rm -f build-asan-configure.log
-cmake --build build-asan --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests
+# The same build directory as scripts/fuzz.sh (scripts/configure-reliability.sh): CI runs
+# both, and the library compiled once with clang, ASan, UBSan and libFuzzer's coverage
+# serves the tests and the fuzz targets (a second sanitized build of the library cost
+# CI about six minutes).
+scripts/configure-reliability.sh
+cmake --build build-fuzz --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests
 
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp:print_suppressions=0
-ctest --test-dir build-asan --output-on-failure --parallel "$(nproc)" --timeout 3600 "${exclude[@]}"
+ctest --test-dir build-fuzz --output-on-failure --parallel "$(nproc)" --timeout 3600 "${exclude[@]}"

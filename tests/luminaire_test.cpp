@@ -388,6 +388,19 @@ TEST(Luminaire, SceneFileInfoSolveAndProbe) {
   EXPECT_FALSE(test::file_exists(dir.path("r.ply")));
 }
 
+// A spot pointed at the sky over an open floor sends its light out of the model.
+TEST(Luminaire, OneAimedAtNothingIsWarnedAboutByName) {
+  test::TempDir dir;
+  dir.write("floor.obj", "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3 4\n");
+  const std::string scene = dir.write("s.json", R"({"meshes": [{"file": "floor.obj"}], "luminaires": [
+      {"type": "spot", "intensity": 100, "position": [2, 2, 2], "aim": [0, 0, 1], "cone": [10, 20], "name": "skyward"},
+      {"type": "spot", "intensity": 100, "position": [2, 2, 2], "aim": [0, 0, -1], "cone": [10, 20], "name": "down"}]})");
+  const auto info = test::run_dynrad("info '" + scene + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("luminaire skyward is aimed at nothing"), std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find("luminaire down is aimed"), std::string::npos) << info.output;
+}
+
 TEST(Luminaire, BadEntriesAreRefusedNamingTheEntry) {
   test::TempDir dir;
   dir.write("floor.obj", "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3 4\n");
