@@ -76,6 +76,17 @@ std::vector<Luminaire> read_luminaires(const std::string& scene_path);
 // True when `path` is a scene file (.json) whose "luminaires" key is present.
 bool has_luminaires(const std::string& path);
 
+// Illuminance (lx, per unit of the luminaire's colour) at point x of a surface with
+// unit normal n: I(C, gamma) cos(theta) / d^2, unoccluded to *unoccluded, seen returned.
+// With `visibility`: one shadow ray to a point source; over a luminous opening larger
+// than a fifth of the distance (the far-field rule), one to each of
+// kLuminaireOpeningSide^2 stratified samples (jittered from `seed`), each sending an
+// equal share of the intensity. Without, no rays and the strata's centres: the
+// unoccluded value is returned.
+constexpr int kLuminaireOpeningSide = 4;
+double luminaire_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
+                             std::uint64_t seed, double* unoccluded);
+
 // Where a luminaire's light goes first, as shares of its flux: out of the model
 // (`escaped`), onto the back of a face (`back`: the luminaire is inside a solid or
 // behind a surface), onto the front of one. side x side directions stratified in equal

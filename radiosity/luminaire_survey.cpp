@@ -1,5 +1,5 @@
-// Where luminaires' light goes first (survey_luminaire), and the placement warnings
-// built on it.
+// Where luminaires' light goes first (survey_luminaire), the placement warnings built
+// on it, and the illuminance a luminaire gives a point (luminaire_illuminance).
 #include "radiosity/luminaire.h"
 #include "radiosity/visibility.h"
 
@@ -86,6 +86,44 @@ std::vector<std::string> luminaire_warnings(const Visibility& visibility, const 
           l.name, 100 * s.escaped));
   }
   return out;
+}
+
+double luminaire_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
+                             std::uint64_t seed, double* unoccluded) {
+  const bool rays = visibility != nullptr;
+  const double length = l.opening_length(), width = l.opening_width();
+  const double distance = (x - l.position).norm();
+  // Far (the opening below a fifth of the distance, the usual far-field rule): a point.
+  const bool near = std::max(length, width) > 0.2 * distance;
+  const int side = near ? kLuminaireOpeningSide : 1;
+  const double share = 1.0 / (side * side);
+  std::uint64_t state = seed;
+  double open = 0, seen = 0;
+  for (int a = 0; a < side; ++a)
+    for (int b = 0; b < side; ++b) {
+      Vec3d p = l.position;
+      if (near) {
+        const double u = (a + (rays ? uniform(state) : 0.5)) / side, w = (b + (rays ? uniform(state) : 0.5)) / side;
+        if (l.round_opening()) {  // a disc of diameter `length`, equal-area polar strata
+          const double r = 0.5 * length * std::sqrt(u), phi = 2 * M_PI * w;
+          p += l.c0 * (r * std::cos(phi)) + l.c90 * (r * std::sin(phi));
+        } else {
+          p += l.c0 * ((u - 0.5) * length) + l.c90 * ((w - 0.5) * width);
+        }
+      }
+      Vec3d d = x - p;
+      const double r2 = d.sqrnorm();
+      if (!(r2 > 0)) continue;
+      d /= std::sqrt(r2);
+      const double cos_receiver = -OpenMesh::dot(n, d);
+      if (cos_receiver <= 0) continue;
+      const double e = share * l.intensity_towards(d) * cos_receiver / r2;
+      if (!(e > 0)) continue;
+      open += e;
+      if (rays && !visibility->occluded(x, n, p, d)) seen += e;
+    }
+  if (unoccluded) *unoccluded = open;
+  return rays ? seen : open;
 }
 
 }  // namespace dynrad::rad

@@ -137,15 +137,10 @@ class Solver {
   // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1.
   bool is_luminaire(std::uint32_t id) const { return id >= patches_.size(); }
   const Luminaire& luminaire(std::uint32_t id) const { return luminaires_[id - patches_.size()]; }
-  // Illuminance at x (normal n) from luminaire `id` per unit of its colour, unoccluded
-  // (to *unoccluded) and seen (returned). With `rays`: one ray towards a point source;
-  // over a luminous opening larger than a fifth of the distance, one to each of
-  // kOpeningSide^2 stratified samples (jittered from `seed`), each sending an equal
-  // share of the intensity. Without, no rays and the strata's centres: the unoccluded
-  // value is returned.
+  // Illuminance at x (normal n) from luminaire `id` per unit of its colour: see
+  // rad::luminaire_illuminance (rays: with the solver's visibility).
   double luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32_t id, std::uint64_t seed, bool rays,
                                double* unoccluded) const;
-  static constexpr int kOpeningSide = 4;  // kOpeningSide^2 samples over a near luminous opening
   struct Patch {
     // area and unshot first: the survey after each shot reads only these
     double area = 0;

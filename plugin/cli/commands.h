@@ -43,7 +43,7 @@ struct LoadOptions {
   ReadOptions read() const {
     ReadOptions options;
     options.strict = strict;
-    options.other_scene_keys = {"luminaires"};  // read by rad::read_luminaires
+    options.other_scene_keys = {"luminaires", "grids"};  // read by rad::read_luminaires, rad::read_grids
     return options;
   }
 };

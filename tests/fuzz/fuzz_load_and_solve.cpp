@@ -15,6 +15,7 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/solver.h"
 #include "radiosity/visibility.h"
@@ -115,7 +116,8 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
   ReadOptions read;
-  read.other_scene_keys = {"luminaires"};  // as the command line reads scenes
+  read.other_scene_keys = {"luminaires", "grids"};  // as the command line reads scenes
+  (void)rad::read_grids(path);
   LoadedScene scene = load_scene(path, {}, {}, read);
   SceneMesh& mesh = *scene.mesh;
   // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;

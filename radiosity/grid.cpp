@@ -1,0 +1,226 @@
+// Calculation grids (see grid.h).
+#include "radiosity/grid.h"
+
+#include "radiosity/form_factor.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dynrad::rad {
+
+namespace {
+
+std::uint64_t mix(std::uint64_t z) {  // SplitMix64, as elsewhere
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+double uniform(std::uint64_t& state) {
+  state = mix(state);
+  return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+// The two axes of the plane with `up` as normal, in x, y, z order.
+std::array<int, 2> plane_axes(int up) {
+  if (up == 0) return {1, 2};
+  if (up == 1) return {0, 2};
+  return {0, 1};
+}
+
+bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
+  }
+  return in;
+}
+
+double distance_to_edges(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const double ax = poly[j][0], ay = poly[j][1], bx = poly[i][0], by = poly[i][1];
+    const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+    const double t = len2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(x - (ax + t * dx), y - (ay + t * dy)));
+  }
+  return best;
+}
+
+// Unit vectors t, b with (t, b, n) right-handed.
+void frame(const Vec3d& n, Vec3d& t, Vec3d& b) {
+  t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
+  b = OpenMesh::cross(n, t);
+}
+
+}  // namespace
+
+double automatic_spacing(double longer_side) {
+  if (!(longer_side > 0)) return 0.2;
+  return std::min(10.0, 0.2 * std::pow(5.0, std::log10(longer_side)));
+}
+
+std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used) {
+  const auto [a, b] = plane_axes(spec.up);
+  double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  double hi[2] = {-lo[0], -lo[1]};
+  for (const auto& p : spec.polygon)
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  const double width = hi[0] - lo[0], depth = hi[1] - lo[1];
+  const double p = spec.spacing > 0 ? spec.spacing : automatic_spacing(std::max(width, depth));
+  if (spacing_used) *spacing_used = p;
+  // Whole cells over the rectangle the border leaves, each as close to p as fits.
+  const double w = std::max(0.0, width - 2 * spec.border), d = std::max(0.0, depth - 2 * spec.border);
+  const long nx = std::max(1L, static_cast<long>(std::ceil(w / p - 1e-9)));
+  const long ny = std::max(1L, static_cast<long>(std::ceil(d / p - 1e-9)));
+  std::vector<Vec3d> out;
+  for (long j = 0; j < ny; ++j)
+    for (long i = 0; i < nx; ++i) {
+      const double x = lo[0] + spec.border + (i + 0.5) * w / nx;
+      const double y = lo[1] + spec.border + (j + 0.5) * d / ny;
+      if (!inside_polygon(spec.polygon, x, y)) continue;
+      if (spec.border > 0 && distance_to_edges(spec.polygon, x, y) < spec.border - 1e-12) continue;
+      Vec3d v(0.0);
+      v[a] = x;
+      v[b] = y;
+      v[spec.up] = spec.height;
+      out.push_back(v);
+    }
+  return out;
+}
+
+LitScene lit_scene(const SceneMesh& mesh, const VertexSplit& split, const std::vector<Rgb>& radiosity,
+                   std::vector<Luminaire> luminaires, double emission_scale, bool photometric) {
+  LitScene lit;
+  lit.positions.reserve(split.size());
+  for (VertexHandle v : split.source) lit.positions.push_back(mesh.mesh().point(v));
+  lit.radiosity = radiosity;
+  for (auto f : mesh.mesh().faces()) {
+    lit.triangles.push_back({split.corner[3 * f.idx()], split.corner[3 * f.idx() + 1], split.corner[3 * f.idx() + 2]});
+    lit.emission.push_back(mesh.material(f).emission * emission_scale);
+  }
+  lit.luminaires = std::move(luminaires);
+  lit.photometric = photometric;
+  lit.prepare();
+  return lit;
+}
+
+void LitScene::prepare() {
+  visibility = std::make_unique<Visibility>(positions, triangles);
+  Bounds bounds;
+  for (const Vec3d& p : positions) bounds.extend(p);
+  diagonal = bounds.diagonal();
+}
+
+GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Vec3d& normal,
+                             const GatherOptions& options, std::uint64_t point_seed) {
+  const Visibility& vis = *scene.visibility;
+  GridPointResult out;
+  out.position = point;
+  // Inside a solid: most of six axis rays meet the backs of faces.
+  int backs = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      Vec3d d(0.0);
+      d[axis] = sign;
+      backs += vis.trace(point, d, d) == Visibility::Hit::back;
+    }
+  if (backs >= 4) {
+    out.masked = true;
+    return out;
+  }
+  Rgb direct, indirect;
+  std::uint64_t state = mix(point_seed);
+  for (std::size_t k = 0; k < scene.luminaires.size(); ++k) {
+    const Luminaire& l = scene.luminaires[k];
+    direct += l.colour * luminaire_illuminance(&vis, l, point, normal, mix(point_seed ^ mix(k + 1)), nullptr);
+  }
+  Vec3d targets[64];
+  for (std::size_t f = 0; f < scene.triangles.size(); ++f) {
+    const Rgb& m = scene.emission[f];
+    if (m.is_zero()) continue;
+    const auto& t = scene.triangles[f];
+    const Vec3d &a = scene.positions[t[0]], &b = scene.positions[t[1]], &c = scene.positions[t[2]];
+    const Vec3d front = OpenMesh::cross(b - a, c - a).normalized();
+    const double ff = point_to_triangle(point, normal, a, b, c, front);
+    if (!(ff > 0)) continue;
+    const int side = std::clamp(static_cast<int>(std::lround(std::sqrt(options.emitter_rays))), 1, 8);
+    int n = 0;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        const double u = (i + uniform(state)) / side, v = (j + uniform(state)) / side;
+        const double s = std::sqrt(u);
+        const Vec3d p = a * (1 - s) + b * (s * (1 - v)) + c * (s * v);
+        if (OpenMesh::dot(normal, p - point) > 0) targets[n++] = p;
+      }
+    if (n == 0) continue;
+    direct += m * (ff * vis.visible_count(point, normal, targets, n, front) / n);
+  }
+  // Indirect: B - emission where cosine-weighted rays first land, stratified.
+  Vec3d t, bt;
+  frame(normal, t, bt);
+  const int side = std::max(1, options.side);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const double u1 = (i + uniform(state)) / side, u2 = (j + uniform(state)) / side;
+      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+      const Vec3d dir = t * (r * std::cos(phi)) + bt * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - u1));
+      // (from a hair above the point: a grid on a surface must not see that surface)
+      const Visibility::Intersection hit = vis.intersect(point + normal * (1e-7 * scene.diagonal), dir);
+      if (!hit.hit || !hit.front) continue;
+      const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
+      const Rgb b = scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
+                    scene.radiosity[tri[2]] * hit.v;
+      indirect += b - scene.emission[static_cast<std::size_t>(hit.face)];
+    }
+  indirect = indirect * (1.0 / (static_cast<double>(side) * side));
+  out.direct = direct.luminance();
+  out.indirect = indirect.luminance();
+  out.illuminance = out.direct + out.indirect;
+  return out;
+}
+
+GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options) {
+  GridResult result;
+  result.spec = spec;
+  const std::vector<Vec3d> points = grid_points(spec, &result.spacing);
+  Vec3d up(0.0);
+  up[spec.up] = 1;
+  result.points.resize(points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+    result.points[k] = gather_point(scene, points[k], up, options, mix(options.seed ^ mix(0x6E1Dull + k)));
+  });
+  result.indirect_rays = options.side * options.side;
+  double sum = 0;
+  result.e_min = std::numeric_limits<double>::infinity();
+  result.e_max = 0;
+  for (const GridPointResult& p : result.points) {
+    if (p.masked) {
+      ++result.masked;
+      continue;
+    }
+    ++result.count;
+    sum += p.illuminance;
+    result.e_min = std::min(result.e_min, p.illuminance);
+    result.e_max = std::max(result.e_max, p.illuminance);
+  }
+  if (result.count == 0) {
+    result.e_min = 0;
+    return result;
+  }
+  result.e_avg = sum / static_cast<double>(result.count);
+  result.u0 = result.e_avg > 0 ? result.e_min / result.e_avg : 0.0;
+  result.min_over_max = result.e_max > 0 ? result.e_min / result.e_max : 0.0;
+  return result;
+}
+
+}  // namespace dynrad::rad

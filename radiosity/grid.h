@@ -1,0 +1,106 @@
+// Calculation grids: illuminance at points in mid-air (a work plane), as lighting
+// designers read it, gathered from a solved scene.
+//
+// A grid is a polygon in a horizontal plane at a height above the model's floor level
+// (the plane of the two axes other than `up`), cut into square cells of a spacing
+// (EN 12464-1's automatic rule p = 0.2 x 5^log10(d), d the longer side of the polygon's
+// bounding rectangle, at most 10 m), with a point at the centre of every cell whose
+// centre lies inside the polygon and at least `border` from its edges.
+//
+// At each point, facing up, the illuminance is gathered:
+//   direct, exact: each luminaire's I(C, gamma) cos(theta) / d^2 with a shadow ray (its
+//     opening sampled when near: luminaire_illuminance), and each emitting triangle's
+//     exitance times Lambert's closed form to it times the fraction of 16 seeded rays
+//     that reach it;
+//   indirect: the solved radiosity seen over the hemisphere, B - emission at the first
+//     surface each ray meets, by stratified cosine-weighted rays (seeded: the same
+//     answer for any thread count); the mean of B over cosine-weighted directions is the
+//     illuminance it gives.
+// A point inside a solid (most of 6 axis rays meet the backs of faces) is masked: no
+// value, counted.
+#pragma once
+
+#include "mesh/scene_mesh.h"
+#include "mesh/vertex_split.h"
+#include "radiosity/luminaire.h"
+#include "radiosity/visibility.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dynrad::rad {
+
+struct GridSpec {
+  std::string name;
+  std::vector<std::array<double, 2>> polygon;  // in the plane's axes (x, y for z up), counter-clockwise or not
+  double height = 0.8;    // along `up`, model units
+  double spacing = 0;     // model units; 0: the automatic rule (metres assumed)
+  double border = 0;      // band along the edges left out
+  int up = 2;             // axis: 0 x, 1 y, 2 z
+};
+
+// The automatic spacing for a longer side d: 0.2 x 5^log10(d), at most 10.
+double automatic_spacing(double longer_side);
+
+// Cell centres of `spec` (before masking), in row order.
+std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr);
+
+// A solved scene to gather from: the lit output mesh (per-vertex radiosity, per-triangle
+// emission, both in the solve's units) and the light sources.
+struct LitScene {
+  std::vector<Vec3d> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<Rgb> radiosity;  // per position
+  std::vector<Rgb> emission;   // per triangle (its exitance; 0 for most)
+  std::vector<Luminaire> luminaires;
+  bool photometric = false;    // lx and cd/m^2 (else W/m^2)
+  // Built by prepare() from the triangles.
+  std::unique_ptr<Visibility> visibility;
+  double diagonal = 0;
+  void prepare();
+};
+
+// The lit scene of a solve: the output mesh (split vertices) and radiosity, each
+// triangle's emission times `emission_scale` (SolveOptions::emission_scale), the
+// luminaires. Prepared (visibility built).
+LitScene lit_scene(const SceneMesh& mesh, const VertexSplit& split, const std::vector<Rgb>& radiosity,
+                   std::vector<Luminaire> luminaires, double emission_scale, bool photometric);
+
+struct GatherOptions {
+  // Indirect rays per point: side x side strata of the cosine-weighted hemisphere.
+  // 48 x 48 = 2304 gives about 0.5% noise (one standard deviation) on the indirect
+  // part in a room of even walls (tests/grid_test.cpp measures it).
+  int side = 48;
+  int emitter_rays = 16;   // per emitting triangle and point
+  std::uint64_t seed = 1;
+};
+
+struct GridPointResult {
+  Vec3d position;
+  bool masked = false;      // inside a solid
+  double illuminance = 0;   // direct + indirect, luminance-weighted (lx or W/m^2)
+  double direct = 0, indirect = 0;
+};
+
+struct GridResult {
+  GridSpec spec;
+  double spacing = 0;
+  std::vector<GridPointResult> points;
+  std::size_t masked = 0;
+  // Over the unmasked points: average, minimum, maximum, U0 = Emin / Eavg, Emin / Emax.
+  double e_avg = 0, e_min = 0, e_max = 0, u0 = 0, min_over_max = 0;
+  std::size_t count = 0;  // unmasked points
+  int indirect_rays = 0;  // per point
+};
+
+GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options = {});
+
+// The illuminance at one point facing `normal` (for tests and probes): direct and
+// indirect as above. `masked` is set when the point is inside a solid.
+GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Vec3d& normal,
+                             const GatherOptions& options, std::uint64_t point_seed);
+
+}  // namespace dynrad::rad

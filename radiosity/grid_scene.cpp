@@ -1,0 +1,156 @@
+// The "grids" array of a JSON scene file. Each entry:
+//
+//   "name"       shown in results and file names (default "grid1", "grid2", ...)
+//   "polygon"    [[x, y], ...]: at least 3 corners in the plane's two axes (x and y
+//                for z up), or
+//   "rectangle"  [x0, y0, x1, y1]
+//   "height"     of the plane along the up axis, model units (default 0.8)
+//   "spacing"    model units, or "auto" (the default): 0.2 x 5^log10(d), d the longer
+//                side, metres assumed
+//   "border"     band along the edges left out (default 0)
+//   "up"         "x", "y" or "z" (default "z")
+//
+// Unknown keys are errors.
+#include "mesh/error.h"
+#include "mesh/io_util.h"
+#include "radiosity/grid_scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace dynrad::rad {
+
+namespace {
+
+using json = nlohmann::json;
+
+class GridParser {
+ public:
+  explicit GridParser(std::string path) : path_(std::move(path)) {}
+
+  std::vector<GridSpec> parse(const json& list) const {
+    if (!list.is_array()) fail("\"grids\" must be an array of grid entries.");
+    std::vector<GridSpec> out;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      out.push_back(entry(list[i], i));
+      if (!names.insert(out.back().name).second)
+        fail("two grids are named \"" + out.back().name + "\"; give each its own name.");
+    }
+    return out;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, 0, what); }
+
+  double number(const json& v, const std::string& where) const {
+    if (!v.is_number()) fail(where + " must be a number.");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(where + " must be finite.");
+    return x;
+  }
+
+  GridSpec entry(const json& e, std::size_t index) const {
+    const std::string where = "grids[" + std::to_string(index) + "]";
+    if (!e.is_object()) fail(where + " must be an object.");
+    static const std::set<std::string> known = {"name", "polygon", "rectangle", "height", "spacing", "border", "up"};
+    for (const auto& item : e.items())
+      if (!known.count(item.key()))
+        fail("unknown key \"" + item.key() + "\" in " + where +
+             " (known keys: border, height, name, polygon, rectangle, spacing, up).");
+    GridSpec g;
+    g.name = "grid" + std::to_string(index + 1);
+    if (e.contains("name")) {
+      if (!e["name"].is_string() || e["name"].get<std::string>().empty()) fail(where + ".name must be a non-empty string.");
+      g.name = e["name"].get<std::string>();
+      for (char c : g.name)
+        if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 32)
+          fail(where + ".name must not hold '/', '\\' or control characters (it names result files).");
+    }
+    const std::string named = where + " (\"" + g.name + "\")";
+    if (e.contains("polygon") == e.contains("rectangle"))
+      fail(named + " needs exactly one of \"polygon\" ([[x, y], ...]) and \"rectangle\" ([x0, y0, x1, y1]).");
+    if (e.contains("rectangle")) {
+      const json& r = e["rectangle"];
+      if (!r.is_array() || r.size() != 4) fail(named + ".rectangle must be [x0, y0, x1, y1].");
+      const double x0 = number(r[0], named + ".rectangle[0]"), y0 = number(r[1], named + ".rectangle[1]");
+      const double x1 = number(r[2], named + ".rectangle[2]"), y1 = number(r[3], named + ".rectangle[3]");
+      if (!(x1 > x0 && y1 > y0)) fail(named + ".rectangle needs x1 > x0 and y1 > y0.");
+      g.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    } else {
+      const json& p = e["polygon"];
+      if (!p.is_array() || p.size() < 3 || p.size() > 100000)
+        fail(named + ".polygon must be an array of at least 3 corners [x, y].");
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const std::string at = named + ".polygon[" + std::to_string(k) + "]";
+        if (!p[k].is_array() || p[k].size() != 2) fail(at + " must be [x, y].");
+        g.polygon.push_back({number(p[k][0], at + "[0]"), number(p[k][1], at + "[1]")});
+      }
+      double area = 0;
+      for (std::size_t i = 0, j = g.polygon.size() - 1; i < g.polygon.size(); j = i++)
+        area += g.polygon[j][0] * g.polygon[i][1] - g.polygon[i][0] * g.polygon[j][1];
+      if (!(std::abs(area) > 0)) fail(named + ".polygon encloses no area.");
+    }
+    if (e.contains("height")) g.height = number(e["height"], named + ".height");
+    if (e.contains("spacing")) {
+      const json& s = e["spacing"];
+      if (s.is_string()) {
+        if (s.get<std::string>() != "auto") fail(named + ".spacing must be a number or \"auto\".");
+      } else {
+        g.spacing = number(s, named + ".spacing");
+        if (!(g.spacing > 0)) fail(named + ".spacing must be above 0.");
+      }
+    }
+    if (e.contains("border")) {
+      g.border = number(e["border"], named + ".border");
+      if (g.border < 0) fail(named + ".border must not be negative.");
+    }
+    if (e.contains("up")) {
+      const std::string up = e["up"].is_string() ? e["up"].get<std::string>() : "";
+      if (up == "x") g.up = 0;
+      else if (up == "y") g.up = 1;
+      else if (up == "z") g.up = 2;
+      else fail(named + ".up must be \"x\", \"y\" or \"z\".");
+    }
+    // Bounded work: a million points per grid at most (the cells are counted before
+    // any is made).
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const auto& p : g.polygon)
+      for (int k = 0; k < 2; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    const double p = g.spacing > 0 ? g.spacing : automatic_spacing(std::max(hi[0] - lo[0], hi[1] - lo[1]));
+    if ((hi[0] - lo[0]) / p * ((hi[1] - lo[1]) / p) > 4e6)
+      fail(named + " would have more than a million points; give a larger \"spacing\".");
+    const std::size_t count = grid_points(g).size();
+    if (count > 1000000) fail(named + " would have more than a million points; give a larger \"spacing\".");
+    if (count == 0) fail(named + " has no point: its border leaves nothing of the polygon.");
+    return g;
+  }
+
+  std::string path_;
+};
+
+}  // namespace
+
+std::vector<GridSpec> read_grids(const std::string& scene_path) {
+  std::string ext = std::filesystem::path(scene_path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".json") return {};
+  const std::string text = detail::read_file(scene_path);
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    throw InputError(scene_path, 0, std::string("invalid JSON: ") + e.what());
+  }
+  if (!doc.is_object() || !doc.contains("grids")) return {};
+  return GridParser(scene_path).parse(doc["grids"]);
+}
+
+}  // namespace dynrad::rad
