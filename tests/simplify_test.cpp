@@ -292,10 +292,12 @@ TEST(Simplify, OpeningsAndMaterialBordersKeepTheirExactShape) {
   for (const auto& [a, b] : borders) {
     bool covered = false;
     for (const auto& [c, d] : simplified) {
-      const Vec3d cd = point(d) - point(c);
+      // (a named copy: a lambda may not capture a structured binding before C++20)
+      const Vec3d start = point(c);
+      const Vec3d cd = point(d) - start;
       auto on = [&](const Vec3d& p) {
-        const double t = OpenMesh::dot(p - point(c), cd) / cd.sqrnorm();
-        return t > -1e-12 && t < 1 + 1e-12 && (p - point(c) - cd * t).norm() < 1e-12;
+        const double t = OpenMesh::dot(p - start, cd) / cd.sqrnorm();
+        return t > -1e-12 && t < 1 + 1e-12 && (p - start - cd * t).norm() < 1e-12;
       };
       covered = covered || (on(point(a)) && on(point(b)) && OpenMesh::dot(point(b) - point(a), cd) > 0);
     }
