@@ -66,7 +66,8 @@ double automatic_spacing(double longer_side) {
   return std::min(10.0, 0.2 * std::pow(5.0, std::log10(longer_side)));
 }
 
-std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used) {
+std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::vector<std::array<long, 2>>* cells,
+                               GridCells* layout) {
   const auto [a, b] = plane_axes(spec.up);
   double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double hi[2] = {-lo[0], -lo[1]};
@@ -82,6 +83,7 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used) {
   const double w = std::max(0.0, width - 2 * spec.border), d = std::max(0.0, depth - 2 * spec.border);
   const long nx = std::max(1L, static_cast<long>(std::ceil(w / p - 1e-9)));
   const long ny = std::max(1L, static_cast<long>(std::ceil(d / p - 1e-9)));
+  if (layout) *layout = {nx, ny, lo[0] + spec.border, lo[1] + spec.border, w / nx, d / ny};
   std::vector<Vec3d> out;
   for (long j = 0; j < ny; ++j)
     for (long i = 0; i < nx; ++i) {
@@ -94,6 +96,7 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used) {
       v[b] = y;
       v[spec.up] = spec.height;
       out.push_back(v);
+      if (cells) cells->push_back({i, j});
     }
   return out;
 }
@@ -192,12 +195,14 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
 GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options) {
   GridResult result;
   result.spec = spec;
-  const std::vector<Vec3d> points = grid_points(spec, &result.spacing);
+  std::vector<std::array<long, 2>> cells;
+  const std::vector<Vec3d> points = grid_points(spec, &result.spacing, &cells, &result.cells);
   Vec3d up(0.0);
   up[spec.up] = 1;
   result.points.resize(points.size());
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
     result.points[k] = gather_point(scene, points[k], up, options, mix(options.seed ^ mix(0x6E1Dull + k)));
+    result.points[k].cell = cells[k];
   });
   result.indirect_rays = options.side * options.side;
   double sum = 0;

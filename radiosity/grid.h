@@ -45,8 +45,17 @@ struct GridSpec {
 // The automatic spacing for a longer side d: 0.2 x 5^log10(d), at most 10.
 double automatic_spacing(double longer_side);
 
-// Cell centres of `spec` (before masking), in row order.
-std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr);
+// The cells: nx x ny over the rectangle [x0, x0 + nx w] x [y0, y0 + ny h] (the polygon's
+// bounding rectangle less the border), in the plane's two axes.
+struct GridCells {
+  long nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, w = 0, h = 0;
+};
+
+// Cell centres of `spec` (before masking), in row order; `cells` gets each point's
+// (i, j) and `layout` the cells.
+std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr,
+                               std::vector<std::array<long, 2>>* cells = nullptr, GridCells* layout = nullptr);
 
 // A solved scene to gather from: the lit output mesh (per-vertex radiosity, per-triangle
 // emission, both in the solve's units) and the light sources.
@@ -80,6 +89,7 @@ struct GatherOptions {
 
 struct GridPointResult {
   Vec3d position;
+  std::array<long, 2> cell{0, 0};  // (i, j) in GridResult::cells
   bool masked = false;      // inside a solid
   double illuminance = 0;   // direct + indirect, luminance-weighted (lx or W/m^2)
   double direct = 0, indirect = 0;
@@ -88,6 +98,7 @@ struct GridPointResult {
 struct GridResult {
   GridSpec spec;
   double spacing = 0;
+  GridCells cells;
   std::vector<GridPointResult> points;
   std::size_t masked = 0;
   // Over the unmasked points: average, minimum, maximum, U0 = Emin / Eavg, Emin / Emax.

@@ -3,7 +3,8 @@
 # Safe to run repeatedly; needs root (or sudo).
 #
 #   scripts/install-deps.sh build   # building and running dynrad: compiler, CMake, Ninja,
-#                                   # pkg-config and the -dev libraries (scripts/demo.sh)
+#                                   # pkg-config, the -dev libraries and the DejaVu font
+#                                   # (the grids' pictures) (scripts/demo.sh)
 #   scripts/install-deps.sh [all]   # also what the tests and CI need: GoogleTest, Google
 #                                   # Benchmark, MeshLab and Xvfb (viewer test), Blender
 #                                   # (add-on test), clang, libclang-rt-dev (libFuzzer and
@@ -20,6 +21,7 @@ build_packages=(
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev
+  libfreetype-dev fonts-dejavu-core
 )
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev

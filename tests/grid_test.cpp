@@ -224,6 +224,10 @@ TEST(Grid, SceneFileGridsAreSolvedAndWritten) {
   EXPECT_GT(g["Eavg"].get<double>(), 0);
   EXPECT_LE(g["Emin"].get<double>(), g["Eavg"].get<double>());
   EXPECT_NEAR(g["U0"].get<double>(), g["Emin"].get<double>() / g["Eavg"].get<double>(), 1e-9);
+  const std::string picture = test::read_text(dir.path("lit_grid_office.png"));
+  ASSERT_GT(picture.size(), 1000u);
+  EXPECT_EQ(picture.substr(1, 3), "PNG");
+  EXPECT_EQ(g["picture"], dir.path("lit_grid_office.png"));
   const std::string csv = test::read_text(dir.path("lit_grid_office.csv"));
   EXPECT_EQ(static_cast<int>(std::count(csv.begin(), csv.end(), '\n')), g["count"].get<int>() + 1);
   // The points nearest the foot of the source are 0.25 m from it along x and y, 1.9 m

@@ -9,6 +9,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
+#include "plugin/cli/grid_picture.h"
 #include "plugin/cli/png.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
@@ -155,7 +156,10 @@ int run_solve(SolveCliOptions& options) {
                                    std::filesystem::path(options.output).stem()).string();
   if (!grids.empty()) {
     check_output_writable(grid_prefix + "_grids.json");
-    for (const rad::GridSpec& g : grids) check_output_writable(grid_prefix + "_grid_" + g.name + ".csv");
+    for (const rad::GridSpec& g : grids) {
+      check_output_writable(grid_prefix + "_grid_" + g.name + ".csv");
+      check_output_writable(grid_prefix + "_grid_" + g.name + ".png");
+    }
   }
   if (!options.preview.empty()) check_output_writable(options.preview);
 
@@ -286,6 +290,8 @@ int run_solve(SolveCliOptions& options) {
         file.stream() << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", p.position[0], p.position[1],
                                      p.position[2], p.illuminance, p.direct, p.indirect, p.masked ? 1 : 0);
       file.commit();
+      const std::string png = grid_prefix + "_grid_" + g.name + ".png";
+      write_png(png, grid_picture(r, unit));
       grid_results.push_back({{"name", g.name},
                               {"units", unit},
                               {"height", g.height},
@@ -299,7 +305,8 @@ int run_solve(SolveCliOptions& options) {
                               {"U0", r.u0},
                               {"Emin/Emax", r.min_over_max},
                               {"indirect_rays_per_point", r.indirect_rays},
-                              {"csv", csv}});
+                              {"csv", csv},
+                              {"picture", png}});
       spdlog::info("grid {}: {} points ({} inside solids, left out) at {:.3g} spacing, height {:.3g}: Eavg {:.4g} {}, "
                    "Emin {:.4g}, Emax {:.4g}, U0 {:.3f}, Emin/Emax {:.3f}; wrote {}",
                    g.name, r.count, r.masked, r.spacing, g.height, r.e_avg, unit, r.e_min, r.e_max, r.u0,

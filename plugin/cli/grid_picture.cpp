@@ -1,0 +1,135 @@
+#include "plugin/cli/grid_picture.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dynrad::cli {
+
+std::array<std::uint8_t, 3> false_colour(double t) {
+  static const double stops[6][3] = {{0.05, 0.05, 0.45}, {0.0, 0.35, 1.0}, {0.0, 0.85, 0.9},
+                                     {0.2, 0.8, 0.2},    {1.0, 0.9, 0.0},  {0.9, 0.1, 0.1}};
+  t = std::clamp(t, 0.0, 1.0) * 5;
+  const int k = std::min(4, static_cast<int>(t));
+  const double f = t - k;
+  std::array<std::uint8_t, 3> out{};
+  for (int c = 0; c < 3; ++c)
+    out[c] = static_cast<std::uint8_t>(255 * (stops[k][c] * (1 - f) + stops[k + 1][c] * f) + 0.5);
+  return out;
+}
+
+void legend_scale(double peak, double& top, double& step) {
+  if (!(peak > 0)) {
+    top = 1;
+    step = 0.2;
+    return;
+  }
+  const double power = std::pow(10.0, std::floor(std::log10(peak)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * power >= peak * (1 - 1e-12)) {
+      top = m * power;
+      break;
+    }
+  step = top / (top / power == 2.5 ? 5 : top / power == 1 || top / power == 10 ? 10 : top / power == 2 ? 8 : 5);
+}
+
+rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
+  const rad::GridCells& cells = grid.cells;
+  const long nx = std::max(1L, cells.nx), ny = std::max(1L, cells.ny);
+  const int ppc = std::clamp(static_cast<int>(640 / std::max(nx, ny)), 4, 64);
+  const int map_w = static_cast<int>(nx) * ppc, map_h = static_cast<int>(ny) * ppc;
+  const int header = 104, margin = 16, legend_w = 150;
+  rad::Image image;
+  image.width = margin + map_w + margin + legend_w;
+  image.height = header + std::max(map_h, 300) + margin;
+  image.rgb.assign(static_cast<std::size_t>(image.width) * image.height * 3, 255);
+
+  // Values by cell; -1: no point (outside the polygon), -2: masked (inside a solid).
+  std::vector<double> value(static_cast<std::size_t>(nx * ny), -1.0);
+  for (const rad::GridPointResult& p : grid.points)
+    value[static_cast<std::size_t>(p.cell[1] * nx + p.cell[0])] = p.masked ? -2.0 : p.illuminance;
+  auto at = [&](long i, long j) { return value[static_cast<std::size_t>(j * nx + i)]; };
+  double top = 1, step = 0.2;
+  legend_scale(grid.e_max, top, step);
+
+  // Each pixel: bilinear between the neighbouring cell centres that have values.
+  std::vector<double> pixel(static_cast<std::size_t>(map_w) * map_h, -1.0);
+  for (int py = 0; py < map_h; ++py)
+    for (int px = 0; px < map_w; ++px) {
+      const double fx = (px + 0.5) / ppc - 0.5, fy = (map_h - py - 0.5) / ppc - 0.5;  // plane y grows upwards
+      const long ci = std::clamp(static_cast<long>(std::floor(fx + 0.5)), 0L, nx - 1);
+      const long cj = std::clamp(static_cast<long>(std::floor(fy + 0.5)), 0L, ny - 1);
+      const double own = at(ci, cj);
+      if (own < 0) {
+        pixel[static_cast<std::size_t>(py) * map_w + px] = own;
+        continue;
+      }
+      const long i0 = static_cast<long>(std::floor(fx)), j0 = static_cast<long>(std::floor(fy));
+      double sum = 0, weight = 0;
+      for (long dj = 0; dj < 2; ++dj)
+        for (long di = 0; di < 2; ++di) {
+          const long i = i0 + di, j = j0 + dj;
+          if (i < 0 || j < 0 || i >= nx || j >= ny || at(i, j) < 0) continue;
+          const double w = (di ? fx - i0 : 1 - (fx - i0)) * (dj ? fy - j0 : 1 - (fy - j0));
+          sum += w * at(i, j);
+          weight += w;
+        }
+      pixel[static_cast<std::size_t>(py) * map_w + px] = weight > 0 ? sum / weight : own;
+    }
+  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) {
+    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+    std::uint8_t* d = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+    d[0] = c[0];
+    d[1] = c[1];
+    d[2] = c[2];
+  };
+  for (int py = 0; py < map_h; ++py)
+    for (int px = 0; px < map_w; ++px) {
+      const double v = pixel[static_cast<std::size_t>(py) * map_w + px];
+      std::array<std::uint8_t, 3> c{255, 255, 255};
+      if (v == -2.0) c = ((px + py) / 4) % 2 ? std::array<std::uint8_t, 3>{150, 150, 150}
+                                              : std::array<std::uint8_t, 3>{200, 200, 200};  // masked: hatched
+      else if (v >= 0) c = false_colour(v / top);
+      // Iso-lines: where the level changes between this pixel and the next one.
+      if (v >= 0) {
+        const long level = static_cast<long>(std::floor(v / step));
+        for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          if (px + dx >= map_w || py + dy >= map_h) continue;
+          const double w = pixel[static_cast<std::size_t>(py + dy) * map_w + px + dx];
+          if (w >= 0 && static_cast<long>(std::floor(w / step)) != level) c = {30, 30, 30};
+        }
+      }
+      put(margin + px, header + py, c);
+    }
+
+  // Legend: the bar, a tick and a value at every second step.
+  const TextRenderer text(13), title(17);
+  const int bar_x = margin + map_w + margin, bar_h = std::max(map_h, 300) - 20, bar_y = header + 10;
+  for (int y = 0; y < bar_h; ++y)
+    for (int x = 0; x < 18; ++x) put(bar_x + x, bar_y + y, false_colour(1.0 - static_cast<double>(y) / (bar_h - 1)));
+  const int steps = static_cast<int>(std::lround(top / step));
+  for (int k = 0; k <= steps; ++k) {
+    const int y = bar_y + static_cast<int>(std::lround((1.0 - static_cast<double>(k) / steps) * (bar_h - 1)));
+    for (int x = 18; x < 24; ++x) put(bar_x + x, y, {30, 30, 30});
+    if (k % 2 == 0 || steps <= 6) text.draw(image, bar_x + 28, y + 5, fmt::format("{:g}", k * step), {20, 20, 20});
+  }
+  title.draw(image, bar_x, bar_y - 14, unit, {20, 20, 20});
+
+  // Figures.
+  const double h = grid.spec.height;
+  title.draw(image, margin, 24,
+             fmt::format("{}: {} points at {:.3g} spacing, height {:.3g}", grid.spec.name, grid.count, grid.spacing, h),
+             {0, 0, 0});
+  text.draw(image, margin, 46,
+            fmt::format("Eavg {:.4g} {}   Emin {:.4g}   Emax {:.4g}", grid.e_avg, unit, grid.e_min, grid.e_max),
+            {0, 0, 0});
+  text.draw(image, margin, 66,
+            fmt::format("U0 = Emin/Eavg {:.2f}   Emin/Emax {:.2f}{}", grid.u0, grid.min_over_max,
+                        grid.masked ? fmt::format("   {} points inside solids (hatched)", grid.masked) : ""),
+            {0, 0, 0});
+  return image;
+}
+
+}  // namespace dynrad::cli

@@ -1,0 +1,25 @@
+// A calculation grid as a false-colour plan: smooth colours between the points, iso-lines
+// at the legend's steps, a legend in the scene's units and the grid's figures printed
+// above it.
+#pragma once
+
+#include "plugin/cli/text.h"
+#include "radiosity/grid.h"
+#include "radiosity/preview.h"
+
+#include <string>
+
+namespace dynrad::cli {
+
+// The colour of t in [0, 1] on the false-colour scale: dark blue, blue, cyan, green,
+// yellow, red.
+std::array<std::uint8_t, 3> false_colour(double t);
+
+// The legend's top (a round number at or above `peak`: 1, 2, 2.5 or 5 times a power of
+// ten) and its step (a fifth or a tenth of it).
+void legend_scale(double peak, double& top, double& step);
+
+// `unit`: "lx" or "W/m2".
+rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit);
+
+}  // namespace dynrad::cli
