@@ -235,6 +235,23 @@ TEST(Grid, SceneFileGridsAreSolvedAndWritten) {
   const auto report = nlohmann::json::parse(test::read_text(dir.path("report.json")));
   EXPECT_EQ(report["grids"].size(), 1u);
   EXPECT_GT(g["Emax"].get<double>(), 300 * 1.9 / std::pow(1.9 * 1.9 + 2 * 0.25 * 0.25, 1.5));
+  // `dynrad grid` over the lit PLY: the scene's grids again (from the PLY's float
+  // radiosity: the same figures to 0.1%), and one given on the command line.
+  const auto again = test::run_dynrad("grid -q '" + dir.path("lit.ply") + "' --model '" + scene + "' -o '" +
+                                      dir.path("again") + "'");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto regrid = nlohmann::json::parse(test::read_text(dir.path("again_grids.json")))["grids"][0];
+  for (const char* key : {"Eavg", "Emin", "Emax"})
+    EXPECT_NEAR(regrid[key].get<double>(), g[key].get<double>(), 1e-3 * g[key].get<double>()) << key;
+  EXPECT_EQ(regrid["count"], g["count"]);
+  const auto desk = test::run_dynrad("grid -q '" + dir.path("lit.ply") + "' --model '" + scene +
+                                     "' --grid 1,1,2,2 --height 0.75 --spacing 0.25 --name desk -o '" +
+                                     dir.path("desk") + "'");
+  ASSERT_EQ(desk.exit_code, 0) << desk.output;
+  const auto d = nlohmann::json::parse(test::read_text(dir.path("desk_grids.json")))["grids"][0];
+  EXPECT_EQ(d["name"], "desk");
+  EXPECT_EQ(d["count"], 16);
+  EXPECT_TRUE(test::file_exists(dir.path("desk_grid_desk.png")));
   // A bad grid entry is refused before any work, naming it.
   const std::string bad = dir.write("bad.json", R"({"meshes": [{"file": "room.obj"}],
     "luminaires": [{"type": "point", "intensity": 300, "position": [2, 1.5, 2.7]}],

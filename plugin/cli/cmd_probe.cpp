@@ -25,6 +25,7 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
+#include "plugin/cli/lit_mesh.h"
 #include "radiosity/visibility.h"
 
 #include <fmt/format.h>
@@ -57,76 +58,6 @@ struct CalculationPoint {
   Vec3d position, normal;
   std::string source;  // "points.txt:7" or "grid"
 };
-
-// The lit mesh as plain triangles with per-vertex radiosity, and the triangles around
-// each place: vertices split where surfaces meet (a lamp in a ceiling) share their
-// place, place[v]; its triangles are around[around_start[place] .. around_start[place
-// + 1]), in number order.
-struct LitMesh {
-  std::vector<Vec3d> positions;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<Rgb> radiosity;
-  // Photometric solves (a scene with luminaires) also write illuminance (lx) and
-  // luminance (cd/m^2) per vertex; probe then reads those.
-  bool photometric = false;
-  std::vector<double> illuminance, luminance;
-  std::vector<std::uint32_t> place, around_start, around;
-  double diagonal = 0;
-};
-
-LitMesh read_lit(const std::string& path) {
-  using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-  ReadMesh mesh;
-  OpenMesh::IO::Options io = OpenMesh::IO::Options::Custom;
-  if (!std::ifstream(path)) throw InputError(path, 0, "cannot be read. Check the path.");
-  if (!OpenMesh::IO::read_mesh(mesh, path, io))
-    throw InputError(path, 0, "could not be read as a mesh (is it a PLY written by dynrad solve?).");
-  OpenMesh::VPropHandleT<float> channel[3];
-  const char* names[3] = {"radiosity_r", "radiosity_g", "radiosity_b"};
-  for (int c = 0; c < 3; ++c)
-    if (!mesh.get_property_handle(channel[c], names[c]))
-      throw InputError(
-          path, 0,
-          std::string("has no '") + names[c] + "' vertex property; probe reads PLY files written by dynrad solve.");
-  LitMesh lit;
-  OpenMesh::VPropHandleT<float> illuminance, luminance;
-  lit.photometric =
-      mesh.get_property_handle(illuminance, "illuminance") && mesh.get_property_handle(luminance, "luminance");
-  if (lit.photometric)
-    for (auto v : mesh.vertices()) {
-      lit.illuminance.push_back(mesh.property(illuminance, v));
-      lit.luminance.push_back(mesh.property(luminance, v));
-    }
-  Bounds bounds;
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    lit.positions.emplace_back(p[0], p[1], p[2]);
-    bounds.extend(lit.positions.back());
-    lit.radiosity.emplace_back(mesh.property(channel[0], v), mesh.property(channel[1], v),
-                               mesh.property(channel[2], v));
-  }
-  for (auto f : mesh.faces()) {
-    std::array<std::uint32_t, 3> t{};
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) t[k++] = static_cast<std::uint32_t>(v.idx());
-    lit.triangles.push_back(t);
-  }
-  if (lit.triangles.empty()) throw InputError(path, 0, "has no faces, so there is nothing to probe.");
-  std::map<std::array<double, 3>, std::uint32_t> places;
-  lit.place.reserve(lit.positions.size());
-  for (const Vec3d& p : lit.positions)
-    lit.place.push_back(places.emplace(std::array<double, 3>{p[0], p[1], p[2]}, places.size()).first->second);
-  lit.around_start.assign(places.size() + 1, 0);
-  for (const auto& t : lit.triangles)
-    for (std::uint32_t v : t) ++lit.around_start[lit.place[v] + 1];
-  for (std::size_t k = 0; k < places.size(); ++k) lit.around_start[k + 1] += lit.around_start[k];
-  lit.around.resize(lit.around_start.back());
-  std::vector<std::uint32_t> fill(lit.around_start.begin(), lit.around_start.end() - 1);
-  for (std::uint32_t f = 0; f < lit.triangles.size(); ++f)
-    for (std::uint32_t v : lit.triangles[f]) lit.around[fill[lit.place[v]]++] = f;
-  lit.diagonal = bounds.diagonal();
-  return lit;
-}
 
 std::vector<CalculationPoint> read_points(const std::string& path) {
   std::ifstream in(path);
@@ -283,47 +214,6 @@ std::optional<Hit> find_surface(const LitMesh& lit, const rad::Visibility& index
     hit.luminance = lit.luminance[t[0]] * wa + lit.luminance[t[1]] * u + lit.luminance[t[2]] * w;
   }
   return hit;
-}
-
-// The material of the model face at `point` facing along `normal`. A short ray from a
-// hair above the point (along the normal) finds a face within twice that hair; then,
-// as a search of every face would, the faces around its corners that face within 30
-// degrees of the normal, pass within the hair of the point and hold it, in number
-// order, the nearest plane winning (the later face on a tie). So a point on a lamp's
-// edge gets the same face every time, whichever of the two Embree's tree reports.
-const Material* material_at(const SceneMesh& model, const rad::Visibility& index, const Vec3d& point,
-                            const Vec3d& normal) {
-  const TriMesh& mesh = model.mesh();
-  const double tolerance = 1e-5 * model.bounds().diagonal();
-  const rad::Visibility::Intersection hit = index.intersect(point + normal * tolerance, -normal);
-  if (!hit.hit || hit.distance > 2 * tolerance) return nullptr;
-  std::vector<int> candidates;
-  for (auto v : mesh.fv_range(FaceHandle(hit.face)))
-    for (auto f : mesh.vf_range(v)) candidates.push_back(f.idx());
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  const Material* best = nullptr;
-  double best_distance = tolerance;
-  for (int index_f : candidates) {
-    const FaceHandle f(index_f);
-    const Vec3d fn = model.normal(f);
-    if (OpenMesh::dot(fn, normal) < std::cos(30.0 * M_PI / 180.0)) continue;
-    Vec3d c[3];
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) c[k++] = mesh.point(v);
-    const double plane = std::abs(OpenMesh::dot(point - c[0], fn));
-    if (plane > best_distance) continue;
-    const double area = OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), fn);
-    bool inside = true;
-    for (int i = 0; i < 3 && inside; ++i) {
-      const double w = OpenMesh::dot(OpenMesh::cross(c[(i + 1) % 3] - point, c[(i + 2) % 3] - point), fn) / area;
-      inside = w >= -tolerance / std::sqrt(std::abs(area));
-    }
-    if (!inside) continue;
-    best = &model.material(f);
-    best_distance = plane;
-  }
-  return best;
 }
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }

@@ -9,7 +9,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/grid_picture.h"
+#include "plugin/cli/grid_output.h"
 #include "plugin/cli/png.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
@@ -154,13 +154,7 @@ int run_solve(SolveCliOptions& options) {
   const std::vector<rad::GridSpec> grids = rad::read_grids(options.load.input);
   const std::string grid_prefix = (std::filesystem::path(options.output).parent_path() /
                                    std::filesystem::path(options.output).stem()).string();
-  if (!grids.empty()) {
-    check_output_writable(grid_prefix + "_grids.json");
-    for (const rad::GridSpec& g : grids) {
-      check_output_writable(grid_prefix + "_grid_" + g.name + ".csv");
-      check_output_writable(grid_prefix + "_grid_" + g.name + ".png");
-    }
-  }
+  check_grid_outputs(grid_prefix, grids);
   if (!options.preview.empty()) check_output_writable(options.preview);
 
   const CleanupOptions cleanup = options.load.cleanup();
@@ -277,45 +271,10 @@ int run_solve(SolveCliOptions& options) {
   }
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).
   nlohmann::json grid_results = nlohmann::json::array();
-  if (!grids.empty()) {
-    const rad::LitScene lit_scene = rad::lit_scene(mesh, result.split, result.radiosity, luminaires,
-                                             options.solve.emission_scale, photometric);
-    const char* unit = photometric ? "lx" : "W/m2";
-    for (const rad::GridSpec& g : grids) {
-      const rad::GridResult r = rad::gather_grid(lit_scene, g);
-      const std::string csv = grid_prefix + "_grid_" + g.name + ".csv";
-      AtomicFile file(csv, std::ios::out);
-      file.stream() << fmt::format("x,y,z,illuminance_{0},direct_{0},indirect_{0},masked\n", unit);
-      for (const rad::GridPointResult& p : r.points)
-        file.stream() << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", p.position[0], p.position[1],
-                                     p.position[2], p.illuminance, p.direct, p.indirect, p.masked ? 1 : 0);
-      file.commit();
-      const std::string png = grid_prefix + "_grid_" + g.name + ".png";
-      write_png(png, grid_picture(r, unit));
-      grid_results.push_back({{"name", g.name},
-                              {"units", unit},
-                              {"height", g.height},
-                              {"spacing", r.spacing},
-                              {"border", g.border},
-                              {"count", r.count},
-                              {"masked", r.masked},
-                              {"Eavg", r.e_avg},
-                              {"Emin", r.e_min},
-                              {"Emax", r.e_max},
-                              {"U0", r.u0},
-                              {"Emin/Emax", r.min_over_max},
-                              {"indirect_rays_per_point", r.indirect_rays},
-                              {"csv", csv},
-                              {"picture", png}});
-      spdlog::info("grid {}: {} points ({} inside solids, left out) at {:.3g} spacing, height {:.3g}: Eavg {:.4g} {}, "
-                   "Emin {:.4g}, Emax {:.4g}, U0 {:.3f}, Emin/Emax {:.3f}; wrote {}",
-                   g.name, r.count, r.masked, r.spacing, g.height, r.e_avg, unit, r.e_min, r.e_max, r.u0,
-                   r.min_over_max, csv);
-    }
-    AtomicFile file(grid_prefix + "_grids.json", std::ios::out);
-    file.stream() << nlohmann::json({{"input", options.load.input}, {"grids", grid_results}}).dump(2) << "\n";
-    file.commit();
-  }
+  if (!grids.empty())
+    grid_results = write_grid_results(
+        grid_prefix, options.load.input, grids,
+        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
                "mesh), {} visibility rays; exposure {:.4g}",

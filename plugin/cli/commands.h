@@ -25,6 +25,7 @@ Command add_solve_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_probe_command(CLI::App& app);
+Command add_grid_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

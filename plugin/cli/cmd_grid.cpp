@@ -1,0 +1,113 @@
+// `dynrad grid LIT.ply --model SCENE`: calculation grids over a lit result, without
+// solving again. The grids are the scene file's ("grids"), or one given by --grid. The
+// direct light comes from the model (its luminaires, its emitting faces), the rest from
+// the lit PLY's radiosity (radiosity/grid.h).
+#include "mesh/error.h"
+#include "mesh/load.h"
+#include "plugin/cli/commands.h"
+#include "plugin/cli/grid_output.h"
+#include "plugin/cli/lit_mesh.h"
+#include "radiosity/grid_scene.h"
+#include "radiosity/luminaire.h"
+#include "radiosity/solve_types.h"
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace dynrad::cli {
+namespace {
+
+struct GridOptions {
+  std::string lit, model, grid, output;
+  double height = 0.8, spacing = 0, border = 0;
+  std::string up = "z", name = "grid";
+  LoadOptions model_load;
+};
+
+int run_grid(const GridOptions& options) {
+  std::vector<rad::GridSpec> grids;
+  if (!options.grid.empty()) {
+    std::vector<double> v;
+    std::istringstream in(options.grid);
+    for (std::string field; std::getline(in, field, ',');) {
+      char* end = nullptr;
+      const double x = std::strtod(field.c_str(), &end);
+      if (field.empty() || *end != '\0' || !std::isfinite(x))
+        throw InputError("--grid", 0, "'" + field + "' is not a number; --grid is x0,y0,x1,y1.");
+      v.push_back(x);
+    }
+    if (v.size() != 4 || !(v[2] > v[0] && v[3] > v[1]))
+      throw InputError("--grid", 0, "expects x0,y0,x1,y1 with x1 > x0 and y1 > y0.");
+    rad::GridSpec g;
+    g.name = options.name;
+    g.polygon = {{v[0], v[1]}, {v[2], v[1]}, {v[2], v[3]}, {v[0], v[3]}};
+    g.height = options.height;
+    g.spacing = options.spacing;
+    g.border = options.border;
+    g.up = options.up == "x" ? 0 : options.up == "y" ? 1 : options.up == "z" ? 2 : -1;
+    if (g.up < 0) throw InputError("--up", 0, "'" + options.up + "' is not an axis; use x, y or z.");
+    if (rad::grid_points(g).empty()) throw InputError("--grid", 0, "has no point: the border leaves nothing.");
+    grids.push_back(g);
+  } else {
+    grids = rad::read_grids(options.model);
+    if (grids.empty())
+      throw InputError(options.model, 0,
+                       "declares no \"grids\"; give one with --grid x0,y0,x1,y1 (and --height, --spacing).");
+  }
+  const std::string prefix =
+      options.output.empty()
+          ? (std::filesystem::path(options.lit).parent_path() / std::filesystem::path(options.lit).stem()).string()
+          : options.output;
+  check_grid_outputs(prefix, grids);
+
+  const LitMesh lit = read_lit(options.lit);
+  LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
+  for (const auto& w : loaded.warnings) spdlog::warn("{}", w);
+  const SceneMesh& model = *loaded.mesh;
+  const rad::Visibility model_index(model);
+  rad::LitScene scene;
+  scene.positions = lit.positions;
+  scene.triangles = lit.triangles;
+  scene.radiosity = lit.radiosity;
+  scene.photometric = lit.photometric;
+  scene.luminaires = rad::read_luminaires(options.model);
+  // Each lit triangle's emission: the model's material where its centroid lies.
+  const double scale = lit.photometric ? rad::kLumensPerWatt : 1.0;
+  for (const auto& t : lit.triangles) {
+    const Vec3d &a = lit.positions[t[0]], &b = lit.positions[t[1]], &c = lit.positions[t[2]];
+    const Vec3d n = OpenMesh::cross(b - a, c - a);
+    const Material* m = n.norm() > 0 ? material_at(model, model_index, (a + b + c) / 3.0, n.normalized()) : nullptr;
+    scene.emission.push_back(m ? m->emission * scale : Rgb());
+  }
+  scene.prepare();
+  write_grid_results(prefix, options.model, grids, scene);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_grid_command(CLI::App& app) {
+  auto options = std::make_shared<GridOptions>();
+  CLI::App* command = app.add_subcommand(
+      "grid", "Illuminance on calculation grids (work planes) of a lit mesh: figures, CSV and false-colour plans");
+  command->add_option("lit", options->lit, "Lit PLY written by dynrad solve")->required();
+  command->add_option("--model", options->model,
+                      "The model or scene file the PLY was lit from: its luminaires, emitting faces and grids")
+      ->required();
+  command->add_option("--grid", options->grid, "x0,y0,x1,y1: one rectangular grid instead of the scene's");
+  command->add_option("--height", options->height, "Height of --grid along the up axis")->capture_default_str();
+  command->add_option("--spacing", options->spacing, "Spacing of --grid (default: 0.2 x 5^log10(d))")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--border", options->border, "Band along --grid's edges left out")->check(CLI::NonNegativeNumber);
+  command->add_option("--up", options->up, "Up axis of --grid: x, y or z")->capture_default_str();
+  command->add_option("--name", options->name, "Name of --grid, in results and file names")->capture_default_str();
+  command->add_option("-o,--output", options->output,
+                      "Prefix of the results: PREFIX_grids.json, PREFIX_grid_NAME.csv and .png (default: the PLY's "
+                      "path without .ply)");
+  add_cleanup_options(*command, options->model_load);
+  return [options] { return run_grid(*options); };
+}
+
+}  // namespace dynrad::cli

@@ -1,0 +1,63 @@
+#include "plugin/cli/grid_output.h"
+
+#include "mesh/atomic_file.h"
+#include "plugin/cli/commands.h"
+#include "plugin/cli/grid_picture.h"
+#include "plugin/cli/png.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace dynrad::cli {
+
+void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSpec>& grids) {
+  if (grids.empty()) return;
+  check_output_writable(prefix + "_grids.json");
+  for (const rad::GridSpec& g : grids) {
+    check_output_writable(prefix + "_grid_" + g.name + ".csv");
+    check_output_writable(prefix + "_grid_" + g.name + ".png");
+  }
+}
+
+nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
+                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene) {
+  nlohmann::json results = nlohmann::json::array();
+  const char* unit = scene.photometric ? "lx" : "W/m2";
+  for (const rad::GridSpec& g : grids) {
+    const rad::GridResult r = rad::gather_grid(scene, g);
+    const std::string csv = prefix + "_grid_" + g.name + ".csv";
+    AtomicFile file(csv, std::ios::out);
+    file.stream() << fmt::format("x,y,z,illuminance_{0},direct_{0},indirect_{0},masked\n", unit);
+    for (const rad::GridPointResult& p : r.points)
+      file.stream() << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", p.position[0], p.position[1],
+                                   p.position[2], p.illuminance, p.direct, p.indirect, p.masked ? 1 : 0);
+    file.commit();
+    const std::string png = prefix + "_grid_" + g.name + ".png";
+    write_png(png, grid_picture(r, unit));
+    results.push_back({{"name", g.name},
+                       {"units", unit},
+                       {"height", g.height},
+                       {"spacing", r.spacing},
+                       {"border", g.border},
+                       {"count", r.count},
+                       {"masked", r.masked},
+                       {"Eavg", r.e_avg},
+                       {"Emin", r.e_min},
+                       {"Emax", r.e_max},
+                       {"U0", r.u0},
+                       {"Emin/Emax", r.min_over_max},
+                       {"indirect_rays_per_point", r.indirect_rays},
+                       {"csv", csv},
+                       {"picture", png}});
+    spdlog::info("grid {}: {} points ({} inside solids, left out) at {:.3g} spacing, height {:.3g}: Eavg {:.4g} {}, "
+                 "Emin {:.4g}, Emax {:.4g}, U0 {:.3f}, Emin/Emax {:.3f}; wrote {} and {}",
+                 g.name, r.count, r.masked, r.spacing, g.height, r.e_avg, unit, r.e_min, r.e_max, r.u0,
+                 r.min_over_max, csv, png);
+  }
+  AtomicFile file(prefix + "_grids.json", std::ios::out);
+  file.stream() << nlohmann::json({{"input", input}, {"grids", results}}).dump(2) << "\n";
+  file.commit();
+  return results;
+}
+
+}  // namespace dynrad::cli
