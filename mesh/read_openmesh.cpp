@@ -576,8 +576,21 @@ void check_ply_body(const std::string& path, const std::string& text, const PlyH
             next += static_cast<std::size_t>(n);
             continue;
           }
-          check_colour(e, p, r, line_no, std::strtod(token.c_str(), nullptr));  // strtod reads "nan" and "inf" too
+          char* end = nullptr;
+          const double value = std::strtod(token.c_str(), &end);  // strtod reads "nan" and "inf" too
+          if (*end != '\0')
+            throw InputError(path, line_no,
+                             e.name + " " + std::to_string(r) + ": '" + token + "' is not a number (" + p.name + ").");
+          check_colour(e, p, r, line_no, value);
         }
+        // OpenMesh reads the values as one stream of words, not line by line: a value
+        // too many on one line shifts every later record (a face count read from a
+        // colour, then billions of indices: found by fuzzing).
+        if (next < tokens.size())
+          throw InputError(path, line_no,
+                           e.name + " " + std::to_string(r) + " holds " + std::to_string(tokens.size()) +
+                               " values, more than its properties take (" + std::to_string(next) +
+                               "). Is a property line in the header misspelt or missing?");
       }
     }
     return;

@@ -178,6 +178,16 @@ TEST(BadInput, CornerCountsBeyondTheDataAreRefused) {
   for (float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) binary.append(reinterpret_cast<const char*>(&x), 4);
   for (std::int32_t i : {-1, 0, 1, 2}) binary.append(reinterpret_cast<const char*>(&i), 4);
   expect_refused(dir, dir.write("list_bin.ply", binary), {"list_bin.ply", "face 0", "declares 4294967295 entries"});
+  // Found by fuzzing (2026-12-01): a misspelt property line ("proper1y", read as a
+  // comment) left a face line with a value too many and a "2-5"; OpenMesh reads words,
+  // not lines, took a face count of -5 and appended indices until 7 GB.
+  const std::string shifted = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                              "proper1y uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n";
+  expect_refused(dir, dir.write("dash.ply", shifted + "3 0 1 2 255 2-5\n"), {"dash.ply:16", "'2-5' is not a number"});
+  expect_refused(dir, dir.write("extra.ply", shifted + "3 0 1 2 255 20 90\n"),
+                 {"extra.ply:16", "face 0 holds 7 values", "misspelt"});
   expect_refused(dir, dir.write("version.ply", "ply\nformat binary_little_endian ndices\nend_header\n"),
                  {"version.ply:2", "unknown version 'ndices'"});
   expect_refused(dir, dir.write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 3 4\n"),
