@@ -2,6 +2,7 @@
 #include "radiosity/grid.h"
 
 #include "radiosity/form_factor.h"
+#include "radiosity/random.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,18 +13,6 @@
 namespace dynrad::rad {
 
 namespace {
-
-std::uint64_t mix(std::uint64_t z) {  // SplitMix64, as elsewhere
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-double uniform(std::uint64_t& state) {
-  state = mix(state);
-  return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
-}
 
 // The two axes of the plane with `up` as normal, in x, y, z order.
 std::array<int, 2> plane_axes(int up) {

@@ -12,14 +12,13 @@
 //
 // Unknown keys are errors.
 #include "mesh/error.h"
-#include "mesh/io_util.h"
 #include "radiosity/grid_scene.h"
+#include "radiosity/scene_json.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <set>
 
 namespace dynrad::rad {
@@ -47,12 +46,7 @@ class GridParser {
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, 0, what); }
 
-  double number(const json& v, const std::string& where) const {
-    if (!v.is_number()) fail(where + " must be a number.");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where + " must be finite.");
-    return x;
-  }
+  double number(const json& v, const std::string& where) const { return scene_number(path_, v, where); }
 
   GridSpec entry(const json& e, std::size_t index) const {
     const std::string where = "grids[" + std::to_string(index) + "]";
@@ -139,18 +133,9 @@ class GridParser {
 }  // namespace
 
 std::vector<GridSpec> read_grids(const std::string& scene_path) {
-  std::string ext = std::filesystem::path(scene_path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".json") return {};
-  const std::string text = detail::read_file(scene_path);
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(scene_path, 0, std::string("invalid JSON: ") + e.what());
-  }
-  if (!doc.is_object() || !doc.contains("grids")) return {};
-  return GridParser(scene_path).parse(doc["grids"]);
+  const json list = scene_section(scene_path, "grids");
+  if (list.is_null()) return {};
+  return GridParser(scene_path).parse(list);
 }
 
 }  // namespace dynrad::rad

@@ -73,9 +73,6 @@ void aim_luminaire(Luminaire& l, const Vec3d& aim, double spin_degrees);
 // Throws InputError naming the scene file and the entry.
 std::vector<Luminaire> read_luminaires(const std::string& scene_path);
 
-// True when `path` is a scene file (.json) whose "luminaires" key is present.
-bool has_luminaires(const std::string& path);
-
 // Illuminance (lx, per unit of the luminaire's colour) at point x of a surface with
 // unit normal n: I(C, gamma) cos(theta) / d^2, unoccluded to *unoccluded, seen returned.
 // With `visibility`: one shadow ray to a point source; over a luminous opening larger

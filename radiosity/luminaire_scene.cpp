@@ -27,8 +27,8 @@
 //
 // Unknown keys are errors, as in the rest of the scene file.
 #include "mesh/error.h"
-#include "mesh/io_util.h"
 #include "radiosity/luminaire.h"
+#include "radiosity/scene_json.h"
 
 #include <nlohmann/json.hpp>
 
@@ -60,12 +60,7 @@ class LuminaireParser {
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, 0, what); }
 
-  double number(const json& v, const std::string& where) const {
-    if (!v.is_number()) fail(where + " must be a number.");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where + " must be finite.");
-    return x;
-  }
+  double number(const json& v, const std::string& where) const { return scene_number(path_, v, where); }
 
   Vec3d vec3(const json& v, const std::string& where) const {
     if (!v.is_array() || v.size() != 3) fail(where + " must be an array of 3 numbers.");
@@ -229,34 +224,12 @@ class LuminaireParser {
   std::map<std::string, std::shared_ptr<const Photometry>> files_;
 };
 
-bool is_scene_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".json";
-}
-
-json parse_scene(const std::string& path) {
-  const std::string text = detail::read_file(path);
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(path, 0, std::string("invalid JSON: ") + e.what());
-  }
-}
-
 }  // namespace
 
-bool has_luminaires(const std::string& path) {
-  if (!is_scene_path(path)) return false;
-  const json doc = parse_scene(path);
-  return doc.is_object() && doc.contains("luminaires");
-}
-
 std::vector<Luminaire> read_luminaires(const std::string& scene_path) {
-  if (!is_scene_path(scene_path)) return {};
-  const json doc = parse_scene(scene_path);
-  if (!doc.is_object() || !doc.contains("luminaires")) return {};
-  return LuminaireParser(scene_path).parse(doc["luminaires"]);
+  const json list = scene_section(scene_path, "luminaires");
+  if (list.is_null()) return {};
+  return LuminaireParser(scene_path).parse(list);
 }
 
 }  // namespace dynrad::rad

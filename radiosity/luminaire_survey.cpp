@@ -1,6 +1,7 @@
 // Where luminaires' light goes first (survey_luminaire), the placement warnings built
 // on it, and the illuminance a luminaire gives a point (luminaire_illuminance).
 #include "radiosity/luminaire.h"
+#include "radiosity/random.h"
 #include "radiosity/visibility.h"
 
 #include <fmt/format.h>
@@ -11,23 +12,6 @@
 #include <set>
 
 namespace dynrad::rad {
-
-namespace {
-
-// SplitMix64 (as the solver's): each row of directions draws from its own seed.
-std::uint64_t mix(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-double uniform(std::uint64_t& state) {
-  state = mix(state);
-  return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
-}
-
-}  // namespace
 
 LuminaireSurvey survey_luminaire(const Visibility& visibility, const Luminaire& l, int side, std::uint64_t seed) {
   std::vector<std::array<double, 4>> rows(static_cast<std::size_t>(side));  // weight, escaped, back, front

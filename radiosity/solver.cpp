@@ -3,6 +3,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/parallel.h"
+#include "radiosity/random.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -23,21 +24,10 @@ namespace dynrad::rad {
 
 namespace {
 
-// SplitMix64: a small, well-mixed hash; each (receiver, sender) pair draws its own
-// samples whatever thread computes it, so results do not depend on threads.
-std::uint64_t mix(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
+// Each (receiver, sender) pair draws its own samples (radiosity/random.h).
 struct Rng {
   std::uint64_t state;
-  double uniform() {
-    state = mix(state);
-    return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
-  }
+  double uniform() { return rad::uniform(state); }
 };
 
 // Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of

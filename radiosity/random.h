@@ -1,0 +1,23 @@
+// Seeded random numbers for the solver, luminaires and grids: SplitMix64, a small,
+// well-mixed hash. Each sampled thing (a receiver and sender, a grid point, a row of
+// directions) draws from a seed of its own, so results do not depend on threads.
+#pragma once
+
+#include <cstdint>
+
+namespace dynrad::rad {
+
+inline std::uint64_t mix(std::uint64_t z) {
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Advances `state` and returns a double uniform in [0, 1).
+inline double uniform(std::uint64_t& state) {
+  state = mix(state);
+  return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+}  // namespace dynrad::rad
