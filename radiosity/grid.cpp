@@ -3,6 +3,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/random.h"
+#include "radiosity/rooms.h"
 
 #include <tbb/parallel_for.h>
 
@@ -13,23 +14,6 @@
 namespace dynrad::rad {
 
 namespace {
-
-// The two axes of the plane with `up` as normal, in x, y, z order.
-std::array<int, 2> plane_axes(int up) {
-  if (up == 0) return {1, 2};
-  if (up == 1) return {0, 2};
-  return {0, 1};
-}
-
-bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const auto& a = poly[i];
-    const auto& b = poly[j];
-    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
-  }
-  return in;
-}
 
 double distance_to_edges(const std::vector<std::array<double, 2>>& poly, double x, double y) {
   double best = std::numeric_limits<double>::infinity();
@@ -50,6 +34,16 @@ void frame(const Vec3d& n, Vec3d& t, Vec3d& b) {
 
 }  // namespace
 
+bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
+  }
+  return in;
+}
+
 double automatic_spacing(double longer_side) {
   if (!(longer_side > 0)) return 0.2;
   return std::min(10.0, 0.2 * std::pow(5.0, std::log10(longer_side)));
@@ -57,7 +51,7 @@ double automatic_spacing(double longer_side) {
 
 std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::vector<std::array<long, 2>>* cells,
                                GridCells* layout) {
-  const auto [a, b] = plane_axes(spec.up);
+  const auto [a, b] = plan_axes(spec.up);
   double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double hi[2] = {-lo[0], -lo[1]};
   for (const auto& p : spec.polygon)
@@ -88,29 +82,6 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::
       if (cells) cells->push_back({i, j});
     }
   return out;
-}
-
-LitScene lit_scene(const SceneMesh& mesh, const VertexSplit& split, const std::vector<Rgb>& radiosity,
-                   std::vector<Luminaire> luminaires, double emission_scale, bool photometric) {
-  LitScene lit;
-  lit.positions.reserve(split.size());
-  for (VertexHandle v : split.source) lit.positions.push_back(mesh.mesh().point(v));
-  lit.radiosity = radiosity;
-  for (auto f : mesh.mesh().faces()) {
-    lit.triangles.push_back({split.corner[3 * f.idx()], split.corner[3 * f.idx() + 1], split.corner[3 * f.idx() + 2]});
-    lit.emission.push_back(mesh.material(f).emission * emission_scale);
-  }
-  lit.luminaires = std::move(luminaires);
-  lit.photometric = photometric;
-  lit.prepare();
-  return lit;
-}
-
-void LitScene::prepare() {
-  visibility = std::make_unique<Visibility>(positions, triangles);
-  Bounds bounds;
-  for (const Vec3d& p : positions) bounds.extend(p);
-  diagonal = bounds.diagonal();
 }
 
 GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Vec3d& normal,

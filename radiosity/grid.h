@@ -20,10 +20,7 @@
 // value, counted.
 #pragma once
 
-#include "mesh/scene_mesh.h"
-#include "mesh/vertex_split.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/visibility.h"
+#include "radiosity/lit_scene.h"
 
 #include <array>
 #include <cstdint>
@@ -45,6 +42,9 @@ struct GridSpec {
 // The automatic spacing for a longer side d: 0.2 x 5^log10(d), at most 10.
 double automatic_spacing(double longer_side);
 
+// Whether (x, y) lies inside `polygon` (even-odd rule).
+bool inside_polygon(const std::vector<std::array<double, 2>>& polygon, double x, double y);
+
 // The cells: nx x ny over the rectangle [x0, x0 + nx w] x [y0, y0 + ny h] (the polygon's
 // bounding rectangle less the border), in the plane's two axes.
 struct GridCells {
@@ -56,27 +56,6 @@ struct GridCells {
 // (i, j) and `layout` the cells.
 std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr,
                                std::vector<std::array<long, 2>>* cells = nullptr, GridCells* layout = nullptr);
-
-// A solved scene to gather from: the lit output mesh (per-vertex radiosity, per-triangle
-// emission, both in the solve's units) and the light sources.
-struct LitScene {
-  std::vector<Vec3d> positions;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<Rgb> radiosity;  // per position
-  std::vector<Rgb> emission;   // per triangle (its exitance; 0 for most)
-  std::vector<Luminaire> luminaires;
-  bool photometric = false;    // lx and cd/m^2 (else W/m^2)
-  // Built by prepare() from the triangles.
-  std::unique_ptr<Visibility> visibility;
-  double diagonal = 0;
-  void prepare();
-};
-
-// The lit scene of a solve: the output mesh (split vertices) and radiosity, each
-// triangle's emission times `emission_scale` (SolveOptions::emission_scale), the
-// luminaires. Prepared (visibility built).
-LitScene lit_scene(const SceneMesh& mesh, const VertexSplit& split, const std::vector<Rgb>& radiosity,
-                   std::vector<Luminaire> luminaires, double emission_scale, bool photometric);
 
 struct GatherOptions {
   // Indirect rays per point: side x side strata of the cosine-weighted hemisphere.

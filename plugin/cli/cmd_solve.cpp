@@ -10,10 +10,13 @@
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
+#include "plugin/cli/html_report.h"
+#include "plugin/cli/view_output.h"
 #include "plugin/cli/png.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
-#include "radiosity/preview.h"
+#include "radiosity/render.h"
+#include "radiosity/views.h"
 #include "radiosity/visibility.h"
 #include "radiosity/settings.h"
 #include "radiosity/solver.h"
@@ -42,6 +45,8 @@ struct SolveCliOptions {
   std::string report;
   std::string preview;
   int preview_width = 800;
+  std::string html;    // the one-file HTML report
+  bool views = false;  // also the automatic views (plans, rooms)
   std::string method = "dynamic";
   std::string quality = "normal";
   double patch_size = 0;  // 0: chosen from the model (radiosity/settings.h)
@@ -156,6 +161,16 @@ int run_solve(SolveCliOptions& options) {
                                    std::filesystem::path(options.output).stem()).string();
   check_grid_outputs(grid_prefix, grids);
   if (!options.preview.empty()) check_output_writable(options.preview);
+  // Views: the scene file's cameras always; the automatic ones (whose names come from
+  // the model) with --views or --html, checked here by the directory they go to.
+  const std::vector<rad::View> cameras = rad::read_cameras(options.load.input);
+  const bool automatic_views = options.views || !options.html.empty();
+  for (const rad::View& v : cameras) {
+    check_output_writable(grid_prefix + "_view_" + v.name + ".png");
+    check_output_writable(grid_prefix + "_view_" + v.name + "_luminance.png");
+  }
+  if (automatic_views) check_output_writable(grid_prefix + "_view_plan_storey1.png");
+  if (!options.html.empty()) check_output_writable(options.html);
 
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
@@ -260,21 +275,41 @@ int run_solve(SolveCliOptions& options) {
   write.ascii = options.ascii;
   write_mesh_with_values(options.output, mesh, result.split, values, write);
 
+  // Grids, views and the preview gather from or render the lit mesh (radiosity/lit_scene.h).
+  std::unique_ptr<rad::LitScene> scene_lit;
+  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty())
+    scene_lit = std::make_unique<rad::LitScene>(
+        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
+  std::vector<rad::View> room_views;
+  if (automatic_views || !options.preview.empty()) room_views = rad::automatic_views(*scene_lit, grids);
   if (!options.preview.empty()) {
-    const rad::Visibility visibility(mesh);
-    const rad::Camera camera = rad::default_camera(mesh, visibility);
-    const rad::Image image = rad::render_preview(result.split, result.radiosity, exposure, camera,
-                                                 options.preview_width, options.preview_width * 3 / 4, visibility);
-    write_png(options.preview, image);
-    spdlog::info("wrote {} (camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, camera.eye[0], camera.eye[1],
-                 camera.eye[2]);
+    // The view that shows the most lit surface: from outside an open model (a Cornell
+    // box), from a room's corner in a closed building.
+    const int w = options.preview_width, h = options.preview_width * 3 / 4;
+    std::vector<rad::View> candidates = rad::overview_candidates(*scene_lit, w, h);
+    for (rad::View v : room_views)
+      if (v.kind == rad::View::Kind::room) {
+        v.width = w;
+        v.height = h;
+        candidates.push_back(v);
+      }
+    const rad::View chosen_view = rad::best_lit_view(*scene_lit, candidates, exposure);
+    const rad::RenderedView rendered = rad::render_view(*scene_lit, chosen_view.camera, w, h);
+    write_png(options.preview, rad::colour_image(rendered, exposure, {90, 0, 0}, {0, 0, 0}));
+    const Vec3d& eye = chosen_view.camera.eye;
+    spdlog::info("wrote {} ({}: camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, chosen_view.description, eye[0],
+                 eye[1], eye[2]);
   }
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).
   nlohmann::json grid_results = nlohmann::json::array();
-  if (!grids.empty())
-    grid_results = write_grid_results(
-        grid_prefix, options.load.input, grids,
-        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
+  if (!grids.empty()) grid_results = write_grid_results(grid_prefix, options.load.input, grids, *scene_lit);
+  std::vector<rad::View> views = cameras;
+  if (automatic_views)
+    for (const rad::View& v : room_views)
+      if (std::none_of(cameras.begin(), cameras.end(), [&](const rad::View& c) { return c.name == v.name; }))
+        views.push_back(v);
+  std::vector<ViewPictures> pictures;
+  if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
                "mesh), {} visibility rays; exposure {:.4g}",
@@ -288,7 +323,7 @@ int run_solve(SolveCliOptions& options) {
   spdlog::info("wrote {} ({} vertices, {} triangles, {} elements)", options.output, result.split.size(),
                mesh.face_count(), hierarchy.element_count());
 
-  if (!options.report.empty()) {
+  {
     nlohmann::json j;
     j["dynrad_version"] = DYNRAD_VERSION;
     j["input"] = options.load.input;
@@ -296,6 +331,7 @@ int run_solve(SolveCliOptions& options) {
     j["method"] = report.method;
     j["units"] = photometric ? "photometric" : "radiometric";
     j["grids"] = grid_results;
+    j["views"] = views_json(pictures);
     j["luminaires"] = nlohmann::json::array();
     for (const rad::Luminaire& l : luminaires)
       j["luminaires"].push_back({{"name", l.name},
@@ -355,9 +391,16 @@ int run_solve(SolveCliOptions& options) {
                     {"time_limit", options.solve.time_limit},
                     {"threads", options.solve.threads},
                     {"seed", options.solve.seed}};
-    AtomicFile file(options.report, std::ios::out);
-    file.stream() << j.dump(2) << "\n";
-    file.commit();
+    if (!options.report.empty()) {
+      AtomicFile file(options.report, std::ios::out);
+      file.stream() << j.dump(2) << "\n";
+      file.commit();
+    }
+    if (!options.html.empty()) {
+      write_html_report(options.html, j);
+      spdlog::info("wrote {} (the lighting report: the solve, {} grids, {} views)", options.html, grid_results.size(),
+                   pictures.size());
+    }
   }
   if (!report.refinement_stopped.empty())
     spdlog::warn("refinement stopped at shot {} ({} reached, {} elements); the solve went on without it.",
@@ -464,7 +507,16 @@ Command add_solve_command(CLI::App& app) {
                       "lumens, lux and cd/m^2; emitting faces' W/m^2 are converted at 179 lm/W. The PLY then also "
                       "holds float 'illuminance' (lx, also in 'quality') and 'luminance' (cd/m^2)")
       ->capture_default_str();
-  command->add_option("--preview", options->preview, "Also render a PNG picture of the result");
+  command->add_option("--preview", options->preview,
+                      "Also render a PNG picture of the result, from the view that shows the most lit surface (from "
+                      "outside an open model, from a room's corner inside a building)");
+  command->add_flag("--views", options->views,
+                    "Also render the automatic views: a plan of each storey cut at 0.45 of its ceiling height and a "
+                    "view of each room, as OUT_view_NAME.png and OUT_view_NAME_luminance.png (the scene file's "
+                    "\"cameras\" are always rendered)");
+  command->add_option("--html", options->html,
+                      "Write the lighting report here: one HTML file with the solve's facts, the luminaires, the grids "
+                      "and the views (implies --views)");
   command->add_option("--preview-width", options->preview_width, "Width of the preview in pixels")
       ->capture_default_str()
       ->check(CLI::Range(16, 8192));

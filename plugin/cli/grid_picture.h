@@ -5,7 +5,7 @@
 
 #include "plugin/cli/text.h"
 #include "radiosity/grid.h"
-#include "radiosity/preview.h"
+#include "radiosity/render.h"
 
 #include <string>
 

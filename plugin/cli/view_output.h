@@ -1,0 +1,34 @@
+// Views of a lit scene as pictures: for each view, a true-colour PNG (the PLY colours'
+// exposure and sRGB curve) and a false-colour PNG of luminance with a legend in the
+// scene's units, PREFIX_view_NAME.png and PREFIX_view_NAME_luminance.png.
+#pragma once
+
+#include "radiosity/views.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace dynrad::cli {
+
+struct ViewPictures {
+  rad::View view;
+  rad::Image colour, luminance;
+  double luminance_top = 0;   // the legend's top
+  double lit_fraction = 0;    // of pixels showing a front face brighter than 1% of display white
+  std::string colour_file, luminance_file;
+};
+
+// False colour of luminance (B / pi) over the view, linear from 0 to a round top at or
+// above the 98th percentile of the lit, non-emitting pixels (brighter ones show the top
+// colour), with a legend bar and the view's name and description printed above.
+rad::Image luminance_picture(const rad::RenderedView& rendered, const rad::View& view, bool photometric, double* top);
+
+// Renders every view and writes its two pictures beside PREFIX.
+std::vector<ViewPictures> write_views(const std::string& prefix, const rad::LitScene& scene,
+                                      const std::vector<rad::View>& views, double exposure);
+
+nlohmann::json views_json(const std::vector<ViewPictures>& views);
+
+}  // namespace dynrad::cli
