@@ -37,6 +37,9 @@ struct GridSpec {
   double spacing = 0;     // model units; 0: the automatic rule (metres assumed)
   double border = 0;      // band along the edges left out
   int up = 2;             // axis: 0 x, 1 y, 2 z
+  // Requirements to check (0: none): the average illuminance at least target_eavg,
+  // U0 at least target_u0.
+  double target_eavg = 0, target_u0 = 0;
 };
 
 // The automatic spacing for a longer side d: 0.2 x 5^log10(d), at most 10.
@@ -84,6 +87,10 @@ struct GridResult {
   double e_avg = 0, e_min = 0, e_max = 0, u0 = 0, min_over_max = 0;
   std::size_t count = 0;  // unmasked points
   int indirect_rays = 0;  // per point
+  // Whether the spec's targets are met (true when it has none).
+  bool meets_target() const {
+    return (spec.target_eavg <= 0 || e_avg >= spec.target_eavg) && (spec.target_u0 <= 0 || u0 >= spec.target_u0);
+  }
 };
 
 GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options = {});

@@ -9,6 +9,8 @@
 //                side, metres assumed
 //   "border"     band along the edges left out (default 0)
 //   "up"         "x", "y" or "z" (default "z")
+//   "target"     {"Eavg": E, "U0": u}, either or both: the requirement to check
+//                (EN 12464-1 gives the maintained illuminance and U0 per task)
 //
 // Unknown keys are errors.
 #include "mesh/error.h"
@@ -51,11 +53,11 @@ class GridParser {
   GridSpec entry(const json& e, std::size_t index) const {
     const std::string where = "grids[" + std::to_string(index) + "]";
     if (!e.is_object()) fail(where + " must be an object.");
-    static const std::set<std::string> known = {"name", "polygon", "rectangle", "height", "spacing", "border", "up"};
+    static const std::set<std::string> known = {"name", "polygon", "rectangle", "height", "spacing", "border", "up", "target"};
     for (const auto& item : e.items())
       if (!known.count(item.key()))
         fail("unknown key \"" + item.key() + "\" in " + where +
-             " (known keys: border, height, name, polygon, rectangle, spacing, up).");
+             " (known keys: border, height, name, polygon, rectangle, spacing, target, up).");
     GridSpec g;
     g.name = "grid" + std::to_string(index + 1);
     if (e.contains("name")) {
@@ -109,6 +111,22 @@ class GridParser {
       else if (up == "y") g.up = 1;
       else if (up == "z") g.up = 2;
       else fail(named + ".up must be \"x\", \"y\" or \"z\".");
+    }
+    if (e.contains("target")) {
+      const json& t = e["target"];
+      if (!t.is_object() || t.empty()) fail(named + ".target must be {\"Eavg\": E, \"U0\": u} (either or both).");
+      for (const auto& item : t.items()) {
+        const double x = number(item.value(), named + ".target." + item.key());
+        if (item.key() == "Eavg") {
+          if (!(x > 0)) fail(named + ".target.Eavg must be above 0.");
+          g.target_eavg = x;
+        } else if (item.key() == "U0") {
+          if (!(x > 0 && x <= 1)) fail(named + ".target.U0 must be above 0 and at most 1.");
+          g.target_u0 = x;
+        } else {
+          fail("unknown key \"" + item.key() + "\" in " + named + ".target (known keys: Eavg, U0).");
+        }
+      }
     }
     // Bounded work: a million points per grid at most (the cells are counted before
     // any is made).

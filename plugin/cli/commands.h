@@ -44,7 +44,7 @@ struct LoadOptions {
   ReadOptions read() const {
     ReadOptions options;
     options.strict = strict;
-    options.other_scene_keys = {"luminaires", "grids"};  // read by rad::read_luminaires, rad::read_grids
+    options.other_scene_keys = {"luminaires", "grids", "cameras"};  // rad::read_luminaires, read_grids, read_cameras
     return options;
   }
 };

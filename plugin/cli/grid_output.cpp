@@ -19,6 +19,17 @@ void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSp
   }
 }
 
+namespace {
+
+nlohmann::json target_json(const rad::GridSpec& g) {
+  nlohmann::json t = nlohmann::json::object();
+  if (g.target_eavg > 0) t["Eavg"] = g.target_eavg;
+  if (g.target_u0 > 0) t["U0"] = g.target_u0;
+  return t;
+}
+
+}  // namespace
+
 nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
                                   const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene) {
   nlohmann::json results = nlohmann::json::array();
@@ -47,12 +58,14 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
                        {"U0", r.u0},
                        {"Emin/Emax", r.min_over_max},
                        {"indirect_rays_per_point", r.indirect_rays},
+                       {"target", target_json(g)},
+                       {"meets_target", r.meets_target()},
                        {"csv", csv},
                        {"picture", png}});
     spdlog::info("grid {}: {} points ({} inside solids, left out) at {:.3g} spacing, height {:.3g}: Eavg {:.4g} {}, "
-                 "Emin {:.4g}, Emax {:.4g}, U0 {:.3f}, Emin/Emax {:.3f}; wrote {} and {}",
+                 "Emin {:.4g}, Emax {:.4g}, U0 {:.3f}, Emin/Emax {:.3f}{}; wrote {} and {}",
                  g.name, r.count, r.masked, r.spacing, g.height, r.e_avg, unit, r.e_min, r.e_max, r.u0,
-                 r.min_over_max, csv, png);
+                 r.min_over_max, r.spec.target_eavg > 0 || r.spec.target_u0 > 0 ? "; " + target_text(r, unit) : "", csv, png);
   }
   AtomicFile file(prefix + "_grids.json", std::ios::out);
   file.stream() << nlohmann::json({{"input", input}, {"grids", results}}).dump(2) << "\n";

@@ -129,7 +129,27 @@ rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
             fmt::format("U0 = Emin/Eavg {:.2f}   Emin/Emax {:.2f}{}", grid.u0, grid.min_over_max,
                         grid.masked ? fmt::format("   {} points inside solids (hatched)", grid.masked) : ""),
             {0, 0, 0});
+  const std::string target = target_text(grid, unit);
+  if (!target.empty())
+    text.draw(image, margin, 88, target, grid.meets_target() ? std::array<std::uint8_t, 3>{0, 110, 0}
+                                                             : std::array<std::uint8_t, 3>{190, 0, 0});
   return image;
+}
+
+std::string target_text(const rad::GridResult& grid, const std::string& unit) {
+  const rad::GridSpec& g = grid.spec;
+  if (g.target_eavg <= 0 && g.target_u0 <= 0) return "";
+  std::string wanted, missed;
+  if (g.target_eavg > 0) {
+    wanted = fmt::format("Eavg \u2265 {:g} {}", g.target_eavg, unit);
+    if (grid.e_avg < g.target_eavg) missed = fmt::format("Eavg {:.4g} < {:g}", grid.e_avg, g.target_eavg);
+  }
+  if (g.target_u0 > 0) {
+    wanted += fmt::format("{}U0 \u2265 {:g}", wanted.empty() ? "" : ", ", g.target_u0);
+    if (grid.u0 < g.target_u0)
+      missed += fmt::format("{}U0 {:.2f} < {:g}", missed.empty() ? "" : ", ", grid.u0, g.target_u0);
+  }
+  return "target " + wanted + (missed.empty() ? ": met" : ": NOT met (" + missed + ")");
 }
 
 }  // namespace dynrad::cli

@@ -19,6 +19,10 @@ std::array<std::uint8_t, 3> false_colour(double t);
 // ten) and its step (a fifth or a tenth of it).
 void legend_scale(double peak, double& top, double& step);
 
+// "target Eavg >= 500 lx, U0 >= 0.6: met" or "...: NOT met (U0 0.41 < 0.6)"; empty
+// when the grid has no target.
+std::string target_text(const rad::GridResult& grid, const std::string& unit);
+
 // `unit`: "lx" or "W/m2".
 rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit);
 

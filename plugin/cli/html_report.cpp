@@ -67,6 +67,18 @@ double channel_sum(const json& rgb) {
   return s;
 }
 
+// The grid's target and whether it is met, coloured.
+std::string target_cell(const json& g) {
+  if (!g.contains("target") || !g["target"].is_object() || g["target"].empty()) return "<td>–</td>";
+  std::string wanted;
+  if (g["target"].contains("Eavg")) wanted = "E<sub>avg</sub> ≥ " + number(g["target"]["Eavg"], "{:g}");
+  if (g["target"].contains("U0"))
+    wanted += std::string(wanted.empty() ? "" : ", ") + "U<sub>0</sub> ≥ " + number(g["target"]["U0"], "{:g}");
+  const bool met = g.value("meets_target", false);
+  return std::string("<td style=\"color:") + (met ? "#070\">" : "#b00\">") + wanted + (met ? ": met" : ": not met") +
+         "</td>";
+}
+
 }  // namespace
 
 void write_html_report(const std::string& path, const json& r) {
@@ -137,7 +149,7 @@ void write_html_report(const std::string& path, const json& r) {
     h << "<h2>Calculation grids</h2>\n<table>\n<tr><th>Grid</th><th>Height</th><th>Spacing</th><th>Points</th>"
          "<th>Inside solids</th><th>E<sub>avg</sub> ("
       << illuminance_unit << ")</th><th>E<sub>min</sub></th><th>E<sub>max</sub></th><th>U<sub>0</sub> = "
-         "E<sub>min</sub>/E<sub>avg</sub></th><th>E<sub>min</sub>/E<sub>max</sub></th></tr>\n";
+         "E<sub>min</sub>/E<sub>avg</sub></th><th>E<sub>min</sub>/E<sub>max</sub></th><th>Target</th></tr>\n";
     for (const json& g : r["grids"])
       h << "<tr><td>" << text(g["name"]) << "</td><td class=\"n\">" << number(g["height"], "{:.3g}")
         << "</td><td class=\"n\">" << number(g["spacing"], "{:.3g}") << "</td><td class=\"n\">"
@@ -145,7 +157,7 @@ void write_html_report(const std::string& path, const json& r) {
         << "</td><td class=\"n\">" << number(g["Eavg"], "{:.1f}") << "</td><td class=\"n\">"
         << number(g["Emin"], "{:.1f}") << "</td><td class=\"n\">" << number(g["Emax"], "{:.1f}")
         << "</td><td class=\"n\">" << number(g["U0"], "{:.2f}") << "</td><td class=\"n\">"
-        << number(g["Emin/Emax"], "{:.2f}") << "</td></tr>\n";
+        << number(g["Emin/Emax"], "{:.2f}") << "</td>" << target_cell(g) << "</tr>\n";
     h << "</table>\n";
     const int rays = r["grids"].front().value("indirect_rays_per_point", 0);
     h << "<p class=\"note\">Each point faces up. Direct light is exact (luminaires' photometry, emitting surfaces' "

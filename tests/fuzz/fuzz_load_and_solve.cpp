@@ -116,7 +116,7 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
   ReadOptions read;
-  read.other_scene_keys = {"luminaires", "grids"};  // as the command line reads scenes
+  read.other_scene_keys = {"luminaires", "grids", "cameras"};  // as the command line reads scenes
   (void)rad::read_grids(path);
   LoadedScene scene = load_scene(path, {}, {}, read);
   SceneMesh& mesh = *scene.mesh;
