@@ -20,6 +20,19 @@ Ray camera_ray(const Camera& c, double aspect, double px, double py) {
   return {c.eye, (forward + right * (px * half * aspect) + up * (py * half)).normalized()};
 }
 
+namespace {
+
+bool inside_solid(const LitScene& scene, const Vec3d& p, const Vec3d& right, const Vec3d& up) {
+  int backs = 0;
+  for (const Vec3d& d : {right, up, right * -1.0, up * -1.0}) {
+    const auto hit = scene.visibility->intersect(p, d);
+    backs += hit.hit && !hit.front;
+  }
+  return backs >= 3;
+}
+
+}  // namespace
+
 RenderedView render_view(const LitScene& scene, const Camera& camera, int width, int height) {
   RenderedView view;
   view.width = width;
@@ -29,18 +42,20 @@ RenderedView render_view(const LitScene& scene, const Camera& camera, int width,
   view.kind.assign(n, PixelKind::nothing);
   view.emitter.assign(n, 0);
   const double aspect = static_cast<double>(width) / height;
+  const Vec3d forward = (camera.target - camera.eye).normalized();
+  const Vec3d right = OpenMesh::cross(forward, camera.up).normalized();
+  const Vec3d up = OpenMesh::cross(right, forward);
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
       const Ray ray = camera_ray(camera, aspect, (x + 0.5) / width * 2 - 1, 1 - (y + 0.5) / height * 2);
-      // A plan's ray that starts inside a solid (the ray back up meets the inside of its
-      // top) shows the cut, whether or not the solid is closed underneath.
-      if (camera.orthographic) {
-        const auto behind = scene.visibility->intersect(ray.origin, ray.direction * -1.0);
-        if (behind.hit && !behind.front) {
-          view.kind[pixel] = PixelKind::back;
-          continue;
-        }
+      // A plan's ray that starts inside a solid shows the cut, whether or not the solid
+      // is closed underneath: inside, when at least three of four rays across the
+      // picture meet the backs of faces (the solid's sides, seen from within; its top and
+      // bottom may lie in a ceiling's or floor's plane).
+      if (camera.orthographic && inside_solid(scene, ray.origin, right, up)) {
+        view.kind[pixel] = PixelKind::back;
+        continue;
       }
       const auto hit = scene.visibility->intersect(ray.origin, ray.direction);
       if (!hit.hit) continue;

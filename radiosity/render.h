@@ -1,8 +1,7 @@
 // Pictures of a lit scene: one primary ray per pixel through Embree, the radiosity
 // interpolated from the hit triangle's corner values. Perspective cameras for views of
 // rooms, orthographic ones for plans (rays start at the cut plane, so everything above
-// it is gone; a ray that starts inside a solid, found by the ray back up meeting the
-// inside of its top, shows as the cut).
+// it is gone; a ray that starts inside a solid shows as the cut).
 #pragma once
 
 #include "radiosity/lit_scene.h"
