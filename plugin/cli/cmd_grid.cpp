@@ -1,15 +1,21 @@
 // `dynrad grid LIT.ply --model SCENE`: calculation grids over a lit result, without
 // solving again. The grids are the scene file's ("grids"), or one given by --grid. The
 // direct light comes from the model (its luminaires, its emitting faces), the rest from
-// the lit PLY's radiosity (radiosity/grid.h).
+// the lit PLY's radiosity (radiosity/grid.h). With --views or --html, also the views
+// (the scene's cameras, plans and rooms) and the one-file report.
+#include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
+#include "plugin/cli/html_report.h"
+#include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/solve_types.h"
+#include "radiosity/tonemap.h"
+#include "radiosity/views.h"
 
 #include <spdlog/spdlog.h>
 
@@ -23,6 +29,9 @@ struct GridOptions {
   std::string lit, model, grid, output;
   double height = 0.8, spacing = 0, border = 0;
   std::string up = "z", name = "grid";
+  bool views = false;
+  std::string html;
+  double exposure = 0;  // 0: automatic, as solve's
   LoadOptions model_load;
 };
 
@@ -52,7 +61,7 @@ int run_grid(const GridOptions& options) {
     grids.push_back(g);
   } else {
     grids = rad::read_grids(options.model);
-    if (grids.empty())
+    if (grids.empty() && !options.views && options.html.empty())
       throw InputError(options.model, 0,
                        "declares no \"grids\"; give one with --grid x0,y0,x1,y1 (and --height, --spacing).");
   }
@@ -61,6 +70,14 @@ int run_grid(const GridOptions& options) {
           ? (std::filesystem::path(options.lit).parent_path() / std::filesystem::path(options.lit).stem()).string()
           : options.output;
   check_grid_outputs(prefix, grids);
+  const std::vector<rad::View> cameras = rad::read_cameras(options.model);
+  const bool automatic_views = options.views || !options.html.empty();
+  for (const rad::View& v : cameras) {
+    check_output_writable(prefix + "_view_" + v.name + ".png");
+    check_output_writable(prefix + "_view_" + v.name + "_luminance.png");
+  }
+  if (automatic_views) check_output_writable(prefix + "_view_plan_storey1.png");
+  if (!options.html.empty()) check_output_writable(options.html);
 
   const LitMesh lit = read_lit(options.lit);
   LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
@@ -82,7 +99,30 @@ int run_grid(const GridOptions& options) {
     scene.emission.push_back(m ? m->emission * scale : Rgb());
   }
   scene.prepare();
-  write_grid_results(prefix, options.model, grids, scene);
+  nlohmann::json report = {{"dynrad_version", DYNRAD_VERSION},
+                           {"input", options.model},
+                           {"output", options.lit},
+                           {"units", lit.photometric ? "photometric" : "radiometric"},
+                           {"grids", nlohmann::json::array()}};
+  if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene);
+  std::vector<rad::View> views = cameras;
+  if (automatic_views)
+    for (const rad::View& v : rad::automatic_views(scene, grids))
+      if (std::none_of(cameras.begin(), cameras.end(), [&](const rad::View& c) { return c.name == v.name; }))
+        views.push_back(v);
+  if (!views.empty()) {
+    std::vector<char> include(scene.radiosity.size(), 1);
+    for (std::size_t f = 0; f < scene.triangles.size(); ++f)
+      if (!scene.emission[f].is_zero())
+        for (std::uint32_t v : scene.triangles[f]) include[v] = 0;
+    const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(scene.radiosity, include);
+    report["exposure"] = exposure;
+    report["views"] = views_json(write_views(prefix, scene, views, exposure));
+  }
+  if (!options.html.empty()) {
+    write_html_report(options.html, report);
+    spdlog::info("wrote {}", options.html);
+  }
   return kExitOk;
 }
 
@@ -91,7 +131,8 @@ int run_grid(const GridOptions& options) {
 Command add_grid_command(CLI::App& app) {
   auto options = std::make_shared<GridOptions>();
   CLI::App* command = app.add_subcommand(
-      "grid", "Illuminance on calculation grids (work planes) of a lit mesh: figures, CSV and false-colour plans");
+      "grid", "Illuminance on calculation grids (work planes) of a lit mesh: figures, CSV and false-colour plans; "
+      "with --views or --html, views and the report");
   command->add_option("lit", options->lit, "Lit PLY written by dynrad solve")->required();
   command->add_option("--model", options->model,
                       "The model or scene file the PLY was lit from: its luminaires, emitting faces and grids")
@@ -106,6 +147,12 @@ Command add_grid_command(CLI::App& app) {
   command->add_option("-o,--output", options->output,
                       "Prefix of the results: PREFIX_grids.json, PREFIX_grid_NAME.csv and .png (default: the PLY's "
                       "path without .ply)");
+  command->add_flag("--views", options->views,
+                    "Also render the views: the scene's cameras, a plan of each storey and a view of each room "
+                    "(PREFIX_view_NAME.png and PREFIX_view_NAME_luminance.png)");
+  command->add_option("--html", options->html, "Write a one-file HTML report of the grids and views here (implies --views)");
+  command->add_option("--exposure", options->exposure, "Exposure of the true-colour views (default: automatic)")
+      ->check(CLI::PositiveNumber);
   add_cleanup_options(*command, options->model_load);
   return [options] { return run_grid(*options); };
 }

@@ -100,6 +100,10 @@ void write_html_report(const std::string& path, const json& r) {
     << ".</p>\n";
 
   // The solve.
+  if (!r.contains("method")) {
+    h << "<p class=\"note\">Grids and views of a lit mesh solved earlier; its solve's facts are in the report "
+         "written with it (dynrad solve --report or --html).</p>\n";
+  } else {
   h << "<h2>Solve</h2>\n<table>\n";
   h << row("Method", text(r["method"]) + (r.contains("settings") ? ", quality " + text(r["settings"]["quality"]) : ""));
   h << row("Stopped by", text(r["stopped_by"]));
@@ -126,6 +130,7 @@ void write_html_report(const std::string& path, const json& r) {
   h << row("Visibility rays", number(r["visibility_rays"], "{:.0f}"));
   h << row("Exposure of the pictures", number(r["exposure"]));
   h << "</table>\n";
+  }
 
   // Luminaires.
   if (r.contains("luminaires") && !r["luminaires"].empty()) {
