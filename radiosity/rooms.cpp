@@ -201,7 +201,7 @@ std::vector<Room> find_rooms(const LitScene& scene, int up, const Storey& storey
       relax(i, j, i + 1, j + 1, diagonal_step);
       relax(i, j, i - 1, j + 1, diagonal_step);
     }
-  const double erosion = 0.18 * h;
+  const double erosion = 0.2 * h;
   // Cores: connected eroded cells; then every free cell joins the core that reaches it
   // first through free space.
   std::vector<int> label(n, -1);

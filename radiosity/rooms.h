@@ -13,8 +13,8 @@
 // Rooms: at 0.6 of the ceiling height above a storey's floor, points on a square raster
 //   are free when a ray up meets a ceiling's front and a ray down a floor's front (so
 //   not inside a wall, nor outside the building); neighbours are joined unless a
-//   surface lies between them. Free space is then eroded by 0.18 of the ceiling height
-//   (0.5 m in a 2.7 m storey: doors are narrower than twice that, rooms wider), which
+//   surface lies between them. Free space is then eroded by 0.2 of the ceiling height
+//   (0.54 m in a 2.7 m storey: doors are narrower than twice that, rooms wider), which
 //   cuts rooms apart at their doors; each part left of some size is a room.
 #pragma once
 

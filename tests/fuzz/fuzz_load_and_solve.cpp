@@ -16,6 +16,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/grid_scene.h"
+#include "radiosity/views.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/solver.h"
 #include "radiosity/visibility.h"
@@ -118,6 +119,7 @@ void load_and_solve(const std::string& path) {
   ReadOptions read;
   read.other_scene_keys = {"luminaires", "grids", "cameras"};  // as the command line reads scenes
   (void)rad::read_grids(path);
+  (void)rad::read_cameras(path);
   LoadedScene scene = load_scene(path, {}, {}, read);
   SceneMesh& mesh = *scene.mesh;
   // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;
