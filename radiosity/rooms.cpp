@@ -12,12 +12,6 @@ namespace dynrad::rad {
 
 namespace {
 
-Vec3d axis_vector(int axis, double sign = 1) {
-  Vec3d v(0.0);
-  v[axis] = sign;
-  return v;
-}
-
 Vec3d face_normal(const LitScene& s, std::size_t f, double* area = nullptr) {
   const auto& t = s.triangles[f];
   const Vec3d n = OpenMesh::cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);
@@ -27,6 +21,12 @@ Vec3d face_normal(const LitScene& s, std::size_t f, double* area = nullptr) {
 }
 
 }  // namespace
+
+Vec3d axis_vector(int axis, double sign) {
+  Vec3d v(0.0);
+  v[axis] = sign;
+  return v;
+}
 
 int up_axis(const LitScene& scene) {
   Vec3d facing(0.0);

@@ -27,6 +27,9 @@ namespace dynrad::rad {
 
 int up_axis(const LitScene& scene);
 
+// The unit vector along `axis` (0 x, 1 y, 2 z), times `sign`.
+Vec3d axis_vector(int axis, double sign = 1);
+
 // The two axes of the plan for `up`, the first to the picture's right.
 std::array<int, 2> plan_axes(int up);
 

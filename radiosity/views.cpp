@@ -13,12 +13,6 @@ namespace dynrad::rad {
 
 namespace {
 
-Vec3d axis_vector(int axis, double sign = 1) {
-  Vec3d v(0.0);
-  v[axis] = sign;
-  return v;
-}
-
 Vec3d plan_point(int up, const std::array<int, 2>& axes, double x, double y, double height) {
   Vec3d p(0.0);
   p[axes[0]] = x;
@@ -131,6 +125,14 @@ std::vector<View> overview_candidates(const LitScene& scene, int width, int heig
       }
     }
   }
+  return out;
+}
+
+std::vector<View> merge_views(const std::vector<View>& declared, const std::vector<View>& automatic) {
+  std::vector<View> out = declared;
+  for (const View& v : automatic)
+    if (std::none_of(declared.begin(), declared.end(), [&](const View& d) { return d.name == v.name; }))
+      out.push_back(v);
   return out;
 }
 

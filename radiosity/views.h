@@ -44,6 +44,9 @@ struct ViewOptions {
 std::vector<View> automatic_views(const LitScene& scene, const std::vector<GridSpec>& grids,
                                   const ViewOptions& options = {});
 
+// The declared views, then the automatic ones whose names none of them takes.
+std::vector<View> merge_views(const std::vector<View>& declared, const std::vector<View>& automatic);
+
 // Views from outside each side of the scene, from near each wall and from the middle,
 // looking along the axes other than up.
 std::vector<View> overview_candidates(const LitScene& scene, int width, int height);

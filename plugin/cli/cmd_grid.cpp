@@ -72,12 +72,7 @@ int run_grid(const GridOptions& options) {
   check_grid_outputs(prefix, grids);
   const std::vector<rad::View> cameras = rad::read_cameras(options.model);
   const bool automatic_views = options.views || !options.html.empty();
-  for (const rad::View& v : cameras) {
-    check_output_writable(prefix + "_view_" + v.name + ".png");
-    check_output_writable(prefix + "_view_" + v.name + "_luminance.png");
-  }
-  if (automatic_views) check_output_writable(prefix + "_view_plan_storey1.png");
-  if (!options.html.empty()) check_output_writable(options.html);
+  check_view_outputs(prefix, cameras, automatic_views, options.html);
 
   const LitMesh lit = read_lit(options.lit);
   LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
@@ -105,11 +100,8 @@ int run_grid(const GridOptions& options) {
                            {"units", lit.photometric ? "photometric" : "radiometric"},
                            {"grids", nlohmann::json::array()}};
   if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene);
-  std::vector<rad::View> views = cameras;
-  if (automatic_views)
-    for (const rad::View& v : rad::automatic_views(scene, grids))
-      if (std::none_of(cameras.begin(), cameras.end(), [&](const rad::View& c) { return c.name == v.name; }))
-        views.push_back(v);
+  const std::vector<rad::View> views =
+      automatic_views ? rad::merge_views(cameras, rad::automatic_views(scene, grids)) : cameras;
   if (!views.empty()) {
     std::vector<char> include(scene.radiosity.size(), 1);
     for (std::size_t f = 0; f < scene.triangles.size(); ++f)

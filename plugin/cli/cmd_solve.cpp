@@ -165,12 +165,7 @@ int run_solve(SolveCliOptions& options) {
   // the model) with --views or --html, checked here by the directory they go to.
   const std::vector<rad::View> cameras = rad::read_cameras(options.load.input);
   const bool automatic_views = options.views || !options.html.empty();
-  for (const rad::View& v : cameras) {
-    check_output_writable(grid_prefix + "_view_" + v.name + ".png");
-    check_output_writable(grid_prefix + "_view_" + v.name + "_luminance.png");
-  }
-  if (automatic_views) check_output_writable(grid_prefix + "_view_plan_storey1.png");
-  if (!options.html.empty()) check_output_writable(options.html);
+  check_view_outputs(grid_prefix, cameras, automatic_views, options.html);
 
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
@@ -280,14 +275,14 @@ int run_solve(SolveCliOptions& options) {
   if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty())
     scene_lit = std::make_unique<rad::LitScene>(
         rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
-  std::vector<rad::View> room_views;
-  if (automatic_views || !options.preview.empty()) room_views = rad::automatic_views(*scene_lit, grids);
+  std::vector<rad::View> found_views;
+  if (automatic_views || !options.preview.empty()) found_views = rad::automatic_views(*scene_lit, grids);
   if (!options.preview.empty()) {
     // The view that shows the most lit surface: from outside an open model (a Cornell
     // box), from a room's corner in a closed building.
     const int w = options.preview_width, h = options.preview_width * 3 / 4;
     std::vector<rad::View> candidates = rad::overview_candidates(*scene_lit, w, h);
-    for (rad::View v : room_views)
+    for (rad::View v : found_views)
       if (v.kind == rad::View::Kind::room) {
         v.width = w;
         v.height = h;
@@ -303,11 +298,7 @@ int run_solve(SolveCliOptions& options) {
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).
   nlohmann::json grid_results = nlohmann::json::array();
   if (!grids.empty()) grid_results = write_grid_results(grid_prefix, options.load.input, grids, *scene_lit);
-  std::vector<rad::View> views = cameras;
-  if (automatic_views)
-    for (const rad::View& v : room_views)
-      if (std::none_of(cameras.begin(), cameras.end(), [&](const rad::View& c) { return c.name == v.name; }))
-        views.push_back(v);
+  const std::vector<rad::View> views = automatic_views ? rad::merge_views(cameras, found_views) : cameras;
   std::vector<ViewPictures> pictures;
   if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);
   const auto& e = report.energy;

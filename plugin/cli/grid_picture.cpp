@@ -35,6 +35,31 @@ void legend_scale(double peak, double& top, double& step) {
   step = top / (top / power == 2.5 ? 5 : top / power == 1 || top / power == 10 ? 10 : top / power == 2 ? 8 : 5);
 }
 
+void put_pixel(rad::Image& image, int x, int y, std::array<std::uint8_t, 3> colour) {
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+  std::uint8_t* d = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+  d[0] = colour[0];
+  d[1] = colour[1];
+  d[2] = colour[2];
+}
+
+void draw_legend(rad::Image& image, int x, int y, int height, double top, double step, const std::string& unit,
+                 bool open_top) {
+  const TextRenderer text(13), title(17);
+  for (int row = 0; row < height; ++row)
+    for (int col = 0; col < 18; ++col)
+      put_pixel(image, x + col, y + row, false_colour(1.0 - static_cast<double>(row) / (height - 1)));
+  const int steps = static_cast<int>(std::lround(top / step));
+  for (int k = 0; k <= steps; ++k) {
+    const int tick = y + static_cast<int>(std::lround((1.0 - static_cast<double>(k) / steps) * (height - 1)));
+    for (int col = 18; col < 24; ++col) put_pixel(image, x + col, tick, {30, 30, 30});
+    if (k % 2 == 0 || steps <= 6)
+      text.draw(image, x + 28, tick + 5, fmt::format("{:g}{}", k * step, open_top && k == steps ? "+" : ""),
+                {20, 20, 20});
+  }
+  title.draw(image, x, y - 14, unit, {20, 20, 20});
+}
+
 rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
   const rad::GridCells& cells = grid.cells;
   const long nx = std::max(1L, cells.nx), ny = std::max(1L, cells.ny);
@@ -78,13 +103,7 @@ rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
         }
       pixel[static_cast<std::size_t>(py) * map_w + px] = weight > 0 ? sum / weight : own;
     }
-  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) {
-    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
-    std::uint8_t* d = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
-    d[0] = c[0];
-    d[1] = c[1];
-    d[2] = c[2];
-  };
+  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) { put_pixel(image, x, y, c); };
   for (int py = 0; py < map_h; ++py)
     for (int px = 0; px < map_w; ++px) {
       const double v = pixel[static_cast<std::size_t>(py) * map_w + px];
@@ -104,18 +123,8 @@ rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
       put(margin + px, header + py, c);
     }
 
-  // Legend: the bar, a tick and a value at every second step.
+  draw_legend(image, margin + map_w + margin, header + 10, std::max(map_h, 300) - 20, top, step, unit, false);
   const TextRenderer text(13), title(17);
-  const int bar_x = margin + map_w + margin, bar_h = std::max(map_h, 300) - 20, bar_y = header + 10;
-  for (int y = 0; y < bar_h; ++y)
-    for (int x = 0; x < 18; ++x) put(bar_x + x, bar_y + y, false_colour(1.0 - static_cast<double>(y) / (bar_h - 1)));
-  const int steps = static_cast<int>(std::lround(top / step));
-  for (int k = 0; k <= steps; ++k) {
-    const int y = bar_y + static_cast<int>(std::lround((1.0 - static_cast<double>(k) / steps) * (bar_h - 1)));
-    for (int x = 18; x < 24; ++x) put(bar_x + x, y, {30, 30, 30});
-    if (k % 2 == 0 || steps <= 6) text.draw(image, bar_x + 28, y + 5, fmt::format("{:g}", k * step), {20, 20, 20});
-  }
-  title.draw(image, bar_x, bar_y - 14, unit, {20, 20, 20});
 
   // Figures.
   const double h = grid.spec.height;

@@ -19,6 +19,15 @@ std::array<std::uint8_t, 3> false_colour(double t);
 // ten) and its step (a fifth or a tenth of it).
 void legend_scale(double peak, double& top, double& step);
 
+// Sets one pixel; outside the image, nothing.
+void put_pixel(rad::Image& image, int x, int y, std::array<std::uint8_t, 3> colour);
+
+// A vertical false-colour bar `height` pixels high with its top-left corner at (x, y),
+// ticks and values every `step` (labelled every second one when there are many) up to
+// `top` ("top+" when `open_top`: brighter values show the top colour), and `unit` above.
+void draw_legend(rad::Image& image, int x, int y, int height, double top, double step, const std::string& unit,
+                 bool open_top);
+
 // "target Eavg >= 500 lx, U0 >= 0.6: met" or "...: NOT met (U0 0.41 < 0.6)"; empty
 // when the grid has no target.
 std::string target_text(const rad::GridResult& grid, const std::string& unit);

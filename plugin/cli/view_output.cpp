@@ -1,5 +1,6 @@
 #include "plugin/cli/view_output.h"
 
+#include "mesh/atomic_file.h"
 #include "plugin/cli/grid_picture.h"
 #include "plugin/cli/png.h"
 #include "plugin/cli/text.h"
@@ -30,36 +31,30 @@ rad::Image luminance_picture(const rad::RenderedView& rendered, const rad::View&
   image.width = margin + rendered.width + margin + legend_w;
   image.height = header + std::max(rendered.height, 240) + margin;
   image.rgb.assign(static_cast<std::size_t>(image.width) * image.height * 3, 255);
-  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) {
-    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
-    std::uint8_t* d = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
-    d[0] = c[0];
-    d[1] = c[1];
-    d[2] = c[2];
-  };
   for (int y = 0; y < rendered.height; ++y)
     for (int x = 0; x < rendered.width; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * rendered.width + x;
       std::array<std::uint8_t, 3> c{0, 0, 0};
       if (rendered.kind[p] == rad::PixelKind::front) c = false_colour(rendered.luminance(p) / top);
       else if (rendered.kind[p] == rad::PixelKind::back) c = {70, 70, 70};
-      put(margin + x, header + y, c);
+      put_pixel(image, margin + x, header + y, c);
     }
+  draw_legend(image, margin + rendered.width + margin, header + 10, std::max(rendered.height, 240) - 20, top, step,
+              photometric ? "cd/m\xc2\xb2" : "W/(m\xc2\xb2 sr)", true);
   const TextRenderer text(13), title(16);
-  const int bar_x = margin + rendered.width + margin, bar_h = std::max(rendered.height, 240) - 20, bar_y = header + 10;
-  for (int y = 0; y < bar_h; ++y)
-    for (int x = 0; x < 18; ++x) put(bar_x + x, bar_y + y, false_colour(1.0 - static_cast<double>(y) / (bar_h - 1)));
-  const int steps = static_cast<int>(std::lround(top / step));
-  for (int k = 0; k <= steps; ++k) {
-    const int y = bar_y + static_cast<int>(std::lround((1.0 - static_cast<double>(k) / steps) * (bar_h - 1)));
-    for (int x = 18; x < 24; ++x) put(bar_x + x, y, {30, 30, 30});
-    if (k % 2 == 0 || steps <= 6)
-      text.draw(image, bar_x + 28, y + 5, fmt::format("{:g}{}", k * step, k == steps ? "+" : ""), {20, 20, 20});
-  }
-  text.draw(image, bar_x, bar_y - 8, photometric ? "cd/m\xc2\xb2" : "W/(m\xc2\xb2 sr)", {20, 20, 20});
   title.draw(image, margin, 22, fmt::format("{}: luminance", view.name), {0, 0, 0});
   text.draw(image, margin, 42, view.description, {60, 60, 60});
   return image;
+}
+
+void check_view_outputs(const std::string& prefix, const std::vector<rad::View>& declared, bool automatic,
+                        const std::string& html) {
+  for (const rad::View& v : declared) {
+    check_output_writable(prefix + "_view_" + v.name + ".png");
+    check_output_writable(prefix + "_view_" + v.name + "_luminance.png");
+  }
+  if (automatic) check_output_writable(prefix + "_view_plan_storey1.png");
+  if (!html.empty()) check_output_writable(html);
 }
 
 std::vector<ViewPictures> write_views(const std::string& prefix, const rad::LitScene& scene,

@@ -25,6 +25,11 @@ struct ViewPictures {
 // colour), with a legend bar and the view's name and description printed above.
 rad::Image luminance_picture(const rad::RenderedView& rendered, const rad::View& view, bool photometric, double* top);
 
+// Before any work: the declared views' files, the automatic ones' directory (their
+// names come from the model) and the HTML report (when not empty) can be written.
+void check_view_outputs(const std::string& prefix, const std::vector<rad::View>& declared, bool automatic,
+                        const std::string& html);
+
 // Renders every view and writes its two pictures beside PREFIX.
 std::vector<ViewPictures> write_views(const std::string& prefix, const rad::LitScene& scene,
                                       const std::vector<rad::View>& views, double exposure);
