@@ -43,6 +43,14 @@ void check_material(const Material& m, const std::string& where) {
     throw InputError(where, 0, who + ": reflectance " + format_rgb(m.reflectance) + " must not be negative.");
   if (m.emission.min_channel() < 0.0)
     throw InputError(where, 0, who + ": emission " + format_rgb(m.emission) + " must not be negative.");
+  if (!m.transmittance.is_finite() || m.transmittance.min_channel() < 0.0 || m.transmittance.max_channel() >= 1.0)
+    throw InputError(where, 0,
+                     who + ": transmittance " + format_rgb(m.transmittance) +
+                         " must be from 0 (opaque) to below 1 in every channel (clear glass passes about 0.8 "
+                         "at normal incidence, double glazing about 0.7).");
+  if (m.transmits() && m.emits())
+    throw InputError(where, 0, who + " both emits and transmits; a window is not a light. Give it a "
+                                     "transmittance only; the sky and the sun come through it (\"sky\" in a scene file).");
 }
 
 void accept_material(Material& m, const std::string& where, const ReadOptions& options,

@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/import.h"
+#include "mesh/polygon_triangulation.h"
 
 #include <cmath>
 #include <limits>
@@ -78,9 +79,40 @@ LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const Cl
                          " to compute with in double precision. Scale it (a scene file's \"transform\" can): the "
                          "units do not change the result.");
   }
-  TriangleSoup clean;
+  // Windows: glass faces leave the soup before cleanup (they are not lit surfaces).
   LoadedScene scene;
-  scene.cleanup = cleanup(soup, clean, options);
+  bool any_glass = false;
+  for (std::uint32_t m : soup.material) any_glass = any_glass || soup.materials[m].transmits();
+  PolygonSoup opaque_soup;
+  const PolygonSoup* lit_soup = &soup;
+  if (any_glass) {
+    opaque_soup = soup;
+    opaque_soup.polygons.clear();
+    opaque_soup.material.clear();
+    opaque_soup.group.clear();
+    opaque_soup.origin.clear();
+    for (std::size_t p = 0; p < soup.polygons.size(); ++p) {
+      const Material& m = soup.materials[soup.material[p]];
+      if (!m.transmits()) {
+        opaque_soup.polygons.push_back(soup.polygons[p]);
+        opaque_soup.material.push_back(soup.material[p]);
+        if (p < soup.group.size()) opaque_soup.group.push_back(soup.group[p]);
+        opaque_soup.origin.push_back(soup.origin[p]);
+        continue;
+      }
+      const Vec3d normal = newell_normal(soup.points, soup.polygons[p]);
+      std::vector<Triangle> triangles;
+      if (!(normal.norm() > 0) || !triangulate_polygon(soup.points, soup.polygons[p], normal.normalized(), triangles))
+        continue;  // no area: no window
+      for (const Triangle& t : triangles)
+        scene.glazing.push_back({{soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]}, m.transmittance});
+    }
+    if (opaque_soup.polygons.empty())
+      throw InputError(path, 0, "has only glass (materials with a transmittance): there is no surface to light.");
+    lit_soup = &opaque_soup;
+  }
+  TriangleSoup clean;
+  scene.cleanup = cleanup(*lit_soup, clean, options);
   scene.input_files = soup.files.size();
   scene.warnings = soup.warnings;
   if (clean.triangles.empty())
@@ -96,7 +128,7 @@ LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const Cl
                              " faces could not be imprinted where other surfaces meet them (first: " +
                              scene.cleanup.first_imprint_failure +
                              "); they are lit as they were. Check them for self-intersections.");
-  if (const std::string warning = dropped_emitters(soup, clean); !warning.empty()) scene.warnings.push_back(warning);
+  if (const std::string warning = dropped_emitters(*lit_soup, clean); !warning.empty()) scene.warnings.push_back(warning);
   scene.mesh = std::make_unique<SceneMesh>(clean);
   check_magnitudes(path, *scene.mesh);
   scene.simplify = simplify_flat_regions(*scene.mesh, simplify);

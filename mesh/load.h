@@ -7,14 +7,26 @@
 #include "mesh/scene_mesh.h"
 #include "mesh/simplify.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace dynrad {
 
+// A triangle of a window: glass (a material with a transmittance), kept out of the
+// lit mesh.
+struct GlazingTriangle {
+  std::array<Vec3d, 3> corners;
+  Rgb transmittance;
+};
+
 struct LoadedScene {
   std::unique_ptr<SceneMesh> mesh;
+  // The faces whose material transmits, triangulated: not lit, not blocking the lit
+  // mesh's rays; light from outside (sky, sun) crossing them is scaled by their
+  // transmittance.
+  std::vector<GlazingTriangle> glazing;
   CleanupReport cleanup;
   SimplifyReport simplify;  // all zero-change unless SimplifyOptions::enabled
   std::size_t input_files = 0;

@@ -226,6 +226,18 @@ PolygonSoup detail::read_obj(const std::string& path, const ReadOptions& options
     mat.name = m.name;
     mat.reflectance = Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
     mat.emission = Rgb(m.emission[0], m.emission[1], m.emission[2]);
+    // Glass: `d` (dissolve, the opacity) below 1 makes it transmit 1 - d, tinted by
+    // `Tf` when that is given (many exporters write `Tf 1 1 1` for every material, so
+    // Tf alone does not make a window).
+    if (m.dissolve < 1.0 && m.dissolve >= 0.0) {
+      Rgb filter(1.0);
+      if (m.transmittance[0] > 0 || m.transmittance[1] > 0 || m.transmittance[2] > 0)
+        filter = Rgb(std::min(1.0, static_cast<double>(m.transmittance[0])),
+                     std::min(1.0, static_cast<double>(m.transmittance[1])),
+                     std::min(1.0, static_cast<double>(m.transmittance[2])));
+      mat.transmittance = filter * (1.0 - m.dissolve);
+      if (mat.transmittance.max_channel() >= 1.0) mat.transmittance = mat.transmittance * (0.999 / mat.transmittance.max_channel());
+    }
     mat.origin = libraries.loaded.empty() ? path : libraries.loaded.front().first;
     for (const auto& [lib_path, lines_of] : libraries.loaded) {
       const auto at = lines_of.find(m.name);

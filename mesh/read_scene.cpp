@@ -223,15 +223,18 @@ class SceneParser {
 
   void define_material(PolygonSoup& scene, const std::string& name, const json& def) const {
     const std::string where = "materials." + name;
-    if (!def.is_object()) fail(where + " must be an object with \"reflectance\" and/or \"emission\".");
-    check_keys(def, where, {"reflectance", "emission"});
+    if (!def.is_object())
+      fail(where + " must be an object with \"reflectance\", \"emission\" and/or \"transmittance\".");
+    check_keys(def, where, {"reflectance", "emission", "transmittance"});
     Material m;
     m.name = name;
     m.origin = path_ + " (" + where + ")";
     if (def.contains("reflectance")) m.reflectance = rgb(def["reflectance"], where + ".reflectance");
     if (def.contains("emission")) m.emission = rgb(def["emission"], where + ".emission");
+    if (def.contains("transmittance")) m.transmittance = rgb(def["transmittance"], where + ".transmittance");
     // Checked here even when no face uses it: a definition that is wrong is wrong.
-    if (def.contains("reflectance") || def.contains("emission")) accept_material(m, path_, options_, scene.warnings);
+    if (def.contains("reflectance") || def.contains("emission") || def.contains("transmittance"))
+      accept_material(m, path_, options_, scene.warnings);
     const int existing = scene.find_material(name);
     if (existing < 0) {
       scene.warnings.push_back(path_ + ": material \"" + name + "\" is defined but no face uses it.");
@@ -241,6 +244,7 @@ class SceneParser {
       Material& target = scene.materials[existing];
       if (!def.contains("reflectance") && target.defined) m.reflectance = target.reflectance;
       if (!def.contains("emission") && target.defined) m.emission = target.emission;
+      if (!def.contains("transmittance") && target.defined) m.transmittance = target.transmittance;
       target = m;
     }
   }

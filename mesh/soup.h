@@ -19,8 +19,13 @@ struct Material {
   Rgb emission{0.0};
   std::string origin;  // "file:line" where it was defined, for messages
   bool defined = true;  // false: referenced (usemtl) but not defined anywhere yet
+  // Glazing: the share of light passing straight through (0: opaque). Faces of a
+  // material with a transmittance are windows: they are not lit, and light crosses
+  // them scaled by it (mesh/load.h keeps them apart as LoadedScene::glazing).
+  Rgb transmittance{0.0};
 
   bool emits() const { return emission.max_channel() > 0; }
+  bool transmits() const { return transmittance.max_channel() > 0; }
 };
 
 // Where a polygon came from, for messages that point at the user's file.

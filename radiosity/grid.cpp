@@ -1,6 +1,7 @@
 // Calculation grids (see grid.h).
 #include "radiosity/grid.h"
 
+#include "radiosity/daylight.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/random.h"
 #include "radiosity/rooms.h"
@@ -105,6 +106,15 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
   std::uint64_t state = mix(point_seed);
   for (std::size_t k = 0; k < scene.luminaires.size(); ++k) {
     const Luminaire& l = scene.luminaires[k];
+    if (l.kind == Luminaire::Kind::sky) {
+      // The sky with the grid's own count of directions, its ground part apart.
+      double ground = 0;
+      const double e = daylight_illuminance(&vis, l, point, normal, nullptr, options.side, &ground);
+      out.sky += e - ground;
+      out.ground += ground;
+      direct += l.colour * e;
+      continue;
+    }
     direct += l.colour * luminaire_illuminance(&vis, l, point, normal, mix(point_seed ^ mix(k + 1)), nullptr);
   }
   Vec3d targets[64];
@@ -185,6 +195,31 @@ GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const Gather
   result.e_avg = sum / static_cast<double>(result.count);
   result.u0 = result.e_avg > 0 ? result.e_min / result.e_avg : 0.0;
   result.min_over_max = result.e_max > 0 ? result.e_min / result.e_max : 0.0;
+  // Daylight factors, against the sky's unobstructed horizontal illuminance.
+  // (Only under a sky alone: with the sun or luminaires the ratio is not a daylight factor.)
+  for (const Luminaire& l : scene.luminaires)
+    if (l.kind == Luminaire::Kind::sky && l.daylight && l.daylight->horizontal_sky > 0)
+      result.outside = l.daylight->horizontal_sky;
+  if (scene.luminaires.size() != 1) result.outside = 0;
+  if (result.outside > 0) {
+    const double to_percent = 100.0 / result.outside;
+    result.df_min = std::numeric_limits<double>::infinity();
+    for (const GridPointResult& p : result.points) {
+      if (p.masked) continue;
+      const double df = p.illuminance * to_percent;
+      result.df_avg += df;
+      result.df_min = std::min(result.df_min, df);
+      result.df_max = std::max(result.df_max, df);
+      result.sky_component += p.sky * to_percent;
+      result.externally_reflected += p.ground * to_percent;
+      result.internally_reflected += p.indirect * to_percent;
+    }
+    const double n = static_cast<double>(result.count);
+    result.df_avg /= n;
+    result.sky_component /= n;
+    result.externally_reflected /= n;
+    result.internally_reflected /= n;
+  }
   return result;
 }
 

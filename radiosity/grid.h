@@ -75,6 +75,9 @@ struct GridPointResult {
   bool masked = false;      // inside a solid
   double illuminance = 0;   // direct + indirect, luminance-weighted (lx or W/m^2)
   double direct = 0, indirect = 0;
+  // Of `direct`, what the sky gives from above the horizon (sky component) and from
+  // below it (the ground outside: externally reflected), lx.
+  double sky = 0, ground = 0;
 };
 
 struct GridResult {
@@ -87,6 +90,15 @@ struct GridResult {
   double e_avg = 0, e_min = 0, e_max = 0, u0 = 0, min_over_max = 0;
   std::size_t count = 0;  // unmasked points
   int indirect_rays = 0;  // per point
+  // With a sky: its unobstructed horizontal illuminance (lx) and the daylight factors
+  // over the unmasked points, DF = 100 E / outside (%): average, minimum, maximum, and
+  // the average's three parts: sky component, externally reflected (the ground seen
+  // through openings) and internally reflected (everything the solution's surfaces
+  // send, reflections from outside obstructions included). All 0 unless the sky is
+  // the only source.
+  double outside = 0;
+  double df_avg = 0, df_min = 0, df_max = 0;
+  double sky_component = 0, externally_reflected = 0, internally_reflected = 0;
   // Whether the spec's targets are met (true when it has none).
   bool meets_target() const {
     return (spec.target_eavg <= 0 || e_avg >= spec.target_eavg) && (spec.target_u0 <= 0 || u0 >= spec.target_u0);

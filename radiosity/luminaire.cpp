@@ -2,6 +2,8 @@
 // luminaire_scene.cpp).
 #include "radiosity/luminaire.h"
 
+#include "radiosity/daylight.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -53,6 +55,9 @@ double Luminaire::intensity_towards(const Vec3d& d) const {
       return intensity;
     case Kind::spot:
       return intensity * spot_profile(gamma, inner, outer);
+    case Kind::sky:
+    case Kind::sun:
+      return 0;  // from infinitely far: no intensity (see daylight.h)
     case Kind::photometric: {
       double c = std::atan2(OpenMesh::dot(d, c90), OpenMesh::dot(d, c0)) / kDegree;
       if (c < 0) c += 360;
@@ -63,6 +68,7 @@ double Luminaire::intensity_towards(const Vec3d& d) const {
 }
 
 double Luminaire::peak_intensity() const {
+  if (directional()) return 0;
   if (kind != Kind::photometric) return intensity;
   double peak = 0;
   for (double v : photometry->candela) peak = std::max(peak, v);
@@ -87,6 +93,9 @@ double Luminaire::flux() const {
     }
     case Kind::photometric:
       return scale * photometry->flux;
+    case Kind::sky:
+    case Kind::sun:
+      return daylight_flux;
   }
   return 0;
 }
@@ -99,6 +108,8 @@ double Luminaire::opening_width() const {
 bool Luminaire::round_opening() const { return photometry && photometry->round; }
 
 std::string Luminaire::describe() const {
+  if (directional())
+    return fmt::format("{}: {}", name, !daylight ? "daylight" : kind == Kind::sky ? daylight->sky_summary : daylight->sun_summary);
   std::string what;
   switch (kind) {
     case Kind::point:
@@ -110,6 +121,9 @@ std::string Luminaire::describe() const {
     case Kind::photometric:
       what = fmt::format("{} ({}{})", photometry->file, photometry->format,
                          photometry->name.empty() ? "" : ", " + photometry->name);
+      break;
+    case Kind::sky:
+    case Kind::sun:
       break;
   }
   std::string text = fmt::format("{}: {}, {:.5g} lm, at ({:.4g}, {:.4g}, {:.4g})", name, what, flux(), position[0],

@@ -26,8 +26,12 @@ namespace dynrad::rad {
 
 class Visibility;
 
+struct Daylight;
+
 struct Luminaire {
-  enum class Kind { photometric, point, spot };
+  // sky and sun: daylight (radiosity/daylight.h), from infinitely far; their flux is
+  // what reaches the model's surfaces (set by the solver), their colour white.
+  enum class Kind { photometric, point, spot, sky, sun };
   Kind kind = Kind::point;
   std::string name;
   Vec3d position{0, 0, 0};
@@ -47,6 +51,11 @@ struct Luminaire {
   // aim, falling smoothly (smoothstep in the angle) to 0 at `outer`.
   double intensity = 0;
   double inner = 0, outer = 0;
+
+  // Sky and sun.
+  std::shared_ptr<const Daylight> daylight;
+  double daylight_flux = 0;  // lm reaching the model's surfaces, set by the solver
+  bool directional() const { return kind == Kind::sky || kind == Kind::sun; }
 
   // Intensity in cd towards unit direction `d` (from the luminaire).
   double intensity_towards(const Vec3d& d) const;

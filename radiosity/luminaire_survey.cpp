@@ -1,6 +1,8 @@
 // Where luminaires' light goes first (survey_luminaire), the placement warnings built
 // on it, and the illuminance a luminaire gives a point (luminaire_illuminance).
 #include "radiosity/luminaire.h"
+
+#include "radiosity/daylight.h"
 #include "radiosity/random.h"
 #include "radiosity/visibility.h"
 
@@ -14,6 +16,11 @@
 namespace dynrad::rad {
 
 LuminaireSurvey survey_luminaire(const Visibility& visibility, const Luminaire& l, int side, std::uint64_t seed) {
+  if (l.directional()) {  // its flux is defined as what reaches the model's surfaces
+    LuminaireSurvey all;
+    all.front = 1;
+    return all;
+  }
   std::vector<std::array<double, 4>> rows(static_cast<std::size_t>(side));  // weight, escaped, back, front
   tbb::parallel_for(0, side, [&](int a) {
     std::uint64_t state = mix(seed ^ mix(static_cast<std::uint64_t>(a) + 1));
@@ -53,6 +60,7 @@ std::vector<std::string> luminaire_warnings(const Visibility& visibility, const 
     if (l.photometry && files.insert(l.photometry.get()).second)
       out.insert(out.end(), l.photometry->warnings.begin(), l.photometry->warnings.end());
   for (const Luminaire& l : luminaires) {
+    if (l.directional()) continue;  // the sky and the sun: nothing to place
     if (!(l.flux() > 0)) {
       out.push_back(fmt::format("luminaire {} sends no light (its flux is 0).", l.name));
       continue;
@@ -74,6 +82,7 @@ std::vector<std::string> luminaire_warnings(const Visibility& visibility, const 
 
 double luminaire_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
                              std::uint64_t seed, double* unoccluded) {
+  if (l.directional()) return daylight_illuminance(visibility, l, x, n, unoccluded);
   const bool rays = visibility != nullptr;
   const double length = l.opening_length(), width = l.opening_width();
   const double distance = (x - l.position).norm();

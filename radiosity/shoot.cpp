@@ -101,11 +101,13 @@ bool Solver::shoot_once() {
   // A luminaire's light is the sharpest a surface receives (a point source's pool,
   // a beam's edge) and the most of it: its shots may refine further, to a tighter
   // push-down error (RefineSettings::luminaire_levels, luminaire_pushdown).
+  // (The sky is the exception: its light through a window is as soft as a patch's.)
   const bool from_luminaire = is_luminaire(i);
-  const int max_generation = 2 * (refine_.max_level + (from_luminaire ? refine_.luminaire_levels : 0));
+  const bool sharp = from_luminaire && luminaire(i).kind != Luminaire::Kind::sky;
+  const int max_generation = 2 * (refine_.max_level + (sharp ? refine_.luminaire_levels : 0));
   OracleThresholds oracle = refine_.dynamic;
   if (from_luminaire) {
-    oracle.pushdown *= refine_.luminaire_pushdown;
+    if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
     // and the error is estimated wherever the shot reaches (its closed form is cheap):
     // an element with even corners may hold the peak of a pool of light.
     oracle.pushdown_cumulated_gradient = 0;

@@ -1,6 +1,8 @@
 // State and helpers of the solver; the loop itself is in shoot.cpp.
 #include "radiosity/solver.h"
 
+#include "radiosity/daylight.h"
+
 #include "radiosity/form_factor.h"
 #include "radiosity/parallel.h"
 #include "radiosity/random.h"
@@ -92,6 +94,8 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
     total_area_ += patch.area;
     reflectance_area_ += patch.reflectance * patch.area;
   }
+  for (Luminaire& l : luminaires_)
+    if (l.directional()) l.daylight_flux = daylight_flux(l);
   for (const Luminaire& l : luminaires_) {
     const double flux = l.flux();
     if (!(flux >= 0) || !std::isfinite(flux)) throw std::invalid_argument("luminaire " + l.name + " has no valid flux");
@@ -269,6 +273,13 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
   verdict.assign(patches_.size(), -1.0);
   tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
     if (j == i) return;
+    if (from_luminaire && luminaire(i).directional()) {
+      // The sky reaches any patch that faces some of it; the sun only those facing it.
+      const Luminaire& l = luminaire(i);
+      if (options_.cull && l.kind == Luminaire::Kind::sun && OpenMesh::dot(patches_[j].normal, l.daylight->sun) <= 0)
+        verdict[j] = -2.0;
+      return;
+    }
     if (options_.cull && from_luminaire) {
       const Patch& receiver = patches_[j];
       // Exact: every point of the source is behind or on the receiver's plane.
@@ -442,6 +453,25 @@ void Solver::register_receivers(ElementId first) {
   }
   form_factor_.resize(receivers_.size());
   form_factor_shot_.resize(receivers_.size(), 0);
+}
+
+// What the sky or the sun sends onto the model's surfaces (lm): per patch, its area
+// times the illuminance at its centroid (the sun: the mean over the centroid and the
+// three points halfway to its corners, for shadow edges), summed in patch order.
+double Solver::daylight_flux(const Luminaire& l) const {
+  std::vector<double> power(patches_.size(), 0.0);
+  tbb::parallel_for(std::size_t(0), patches_.size(), [&](std::size_t p) {
+    const Patch& patch = patches_[p];
+    std::vector<Vec3d> points{patch.centre};
+    if (l.kind == Luminaire::Kind::sun)
+      for (const Vec3d& c : patch.corners) points.push_back((patch.centre + c) * 0.5);
+    double e = 0;
+    for (const Vec3d& x : points) e += daylight_illuminance(visibility_.get(), l, x, patch.normal, nullptr);
+    power[p] = patch.area * e / static_cast<double>(points.size());
+  });
+  double total = 0;
+  for (double w : power) total += w;
+  return total;
 }
 
 double Solver::luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32_t id, std::uint64_t seed,

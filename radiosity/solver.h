@@ -137,6 +137,8 @@ class Solver {
   // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1.
   bool is_luminaire(std::uint32_t id) const { return id >= patches_.size(); }
   const Luminaire& luminaire(std::uint32_t id) const { return luminaires_[id - patches_.size()]; }
+  // The flux a sky or sun luminaire sends onto the patches (see solver.cpp).
+  double daylight_flux(const Luminaire& l) const;
   // Illuminance at x (normal n) from luminaire `id` per unit of its colour: see
   // rad::luminaire_illuminance (rays: with the solver's visibility).
   double luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32_t id, std::uint64_t seed, bool rays,

@@ -11,6 +11,7 @@
 #include "plugin/cli/html_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
+#include "radiosity/daylight.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/solve_types.h"
@@ -84,7 +85,8 @@ int run_grid(const GridOptions& options) {
   scene.triangles = lit.triangles;
   scene.radiosity = lit.radiosity;
   scene.photometric = lit.photometric;
-  scene.luminaires = rad::read_luminaires(options.model);
+  scene.luminaires = rad::read_daylight(options.model, loaded.glazing);
+  for (rad::Luminaire& l : rad::read_luminaires(options.model)) scene.luminaires.push_back(std::move(l));
   // Each lit triangle's emission: the model's material where its centroid lies.
   const double scale = lit.photometric ? rad::kLumensPerWatt : 1.0;
   for (const auto& t : lit.triangles) {

@@ -13,6 +13,7 @@
 #include "plugin/cli/html_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/png.h"
+#include "radiosity/daylight.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/render.h"
@@ -179,20 +180,27 @@ int run_solve(SolveCliOptions& options) {
     spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", scene.simplify.faces_before,
                  scene.simplify.faces_after, scene.simplify.seconds);
   SceneMesh& mesh = *scene.mesh;
-  std::vector<rad::Luminaire> luminaires = rad::read_luminaires(options.load.input);
+  // Daylight (the scene's "sky": the sun, then the sky) shoots first, then luminaires.
+  std::vector<rad::Luminaire> luminaires = rad::read_daylight(options.load.input, scene.glazing);
+  const bool daylight = !luminaires.empty();
+  for (rad::Luminaire& l : rad::read_luminaires(options.load.input)) luminaires.push_back(std::move(l));
+  if (!scene.glazing.empty())
+    spdlog::info("{} glazing triangles (materials with a transmittance): windows, not lit{}", scene.glazing.size(),
+                 daylight ? "; the sky and the sun come through them" : "; without a \"sky\" nothing comes through them");
   if (!(mesh.emitting_area() > 0) && luminaires.empty())
     throw InputError(options.load.input, 0,
-                     "no face emits light and there is no luminaire, so everything would be black. Place "
-                     "luminaires (\"luminaires\" in a scene file), or give a material an emission: Ke in the .mtl "
-                     "file, or \"emission\" in a scene file's materials.");
+                     "no face emits light and there is no luminaire and no sky, so everything would be black. "
+                     "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
+                     "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "
+                     "materials.");
   bool photometric = !luminaires.empty();
   if (options.units == "photometric") {
     photometric = true;
   } else if (options.units == "radiometric") {
     if (!luminaires.empty())
       throw InputError("--units", 0,
-                       "radiometric units cannot be used with luminaires, whose photometry is in candela and lumens. "
-                       "Leave --units out (photometric) or remove the luminaires.");
+                       "radiometric units cannot be used with luminaires or daylight, which are given in candela, "
+                       "lumens and lux. Leave --units out (photometric) or remove them.");
     photometric = false;
   } else if (options.units != "auto") {
     throw InputError("--units", 0, "'" + options.units + "' is not a unit system; available: auto, photometric, radiometric.");

@@ -44,7 +44,7 @@ struct LoadOptions {
   ReadOptions read() const {
     ReadOptions options;
     options.strict = strict;
-    options.other_scene_keys = {"luminaires", "grids", "cameras"};  // rad::read_luminaires, read_grids, read_cameras
+    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky"};  // rad::read_luminaires, _grids, _cameras, _daylight
     return options;
   }
 };

@@ -138,6 +138,11 @@ rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
             fmt::format("U0 = Emin/Eavg {:.2f}   Emin/Emax {:.2f}{}", grid.u0, grid.min_over_max,
                         grid.masked ? fmt::format("   {} points inside solids (hatched)", grid.masked) : ""),
             {0, 0, 0});
+  if (grid.outside > 0)
+    text.draw(image, margin + 330, 66,
+              fmt::format("DF avg {:.2f}% (SC {:.2f}, ERC {:.2f}, IRC {:.2f})   min {:.2f}%", grid.df_avg,
+                          grid.sky_component, grid.externally_reflected, grid.internally_reflected, grid.df_min),
+              {0, 0, 0});
   const std::string target = target_text(grid, unit);
   if (!target.empty())
     text.draw(image, margin, 88, target, grid.meets_target() ? std::array<std::uint8_t, 3>{0, 110, 0}

@@ -164,6 +164,26 @@ void write_html_report(const std::string& path, const json& r) {
         << "</td><td class=\"n\">" << number(g["U0"], "{:.2f}") << "</td><td class=\"n\">"
         << number(g["Emin/Emax"], "{:.2f}") << "</td>" << target_cell(g) << "</tr>\n";
     h << "</table>\n";
+    bool any_df = false;
+    for (const json& g : r["grids"]) any_df = any_df || (g.contains("daylight_factor") && g["daylight_factor"].is_object());
+    if (any_df) {
+      h << "<h3>Daylight factors</h3>\n<table>\n<tr><th>Grid</th><th>DF<sub>avg</sub> (%)</th><th>DF<sub>min</sub></th>"
+           "<th>DF<sub>max</sub></th><th>Sky component</th><th>Externally reflected</th><th>Internally reflected</th>"
+           "<th>Outside (lx)</th></tr>\n";
+      for (const json& g : r["grids"]) {
+        if (!g.contains("daylight_factor") || !g["daylight_factor"].is_object()) continue;
+        const json& d = g["daylight_factor"];
+        h << "<tr><td>" << text(g["name"]) << "</td><td class=\"n\">" << number(d["DFavg"], "{:.2f}")
+          << "</td><td class=\"n\">" << number(d["DFmin"], "{:.2f}") << "</td><td class=\"n\">"
+          << number(d["DFmax"], "{:.2f}") << "</td><td class=\"n\">" << number(d["sky_component"], "{:.2f}")
+          << "</td><td class=\"n\">" << number(d["externally_reflected_component"], "{:.2f}")
+          << "</td><td class=\"n\">" << number(d["internally_reflected_component"], "{:.2f}")
+          << "</td><td class=\"n\">" << number(d["outside_horizontal_illuminance"], "{:.0f}") << "</td></tr>\n";
+      }
+      h << "</table>\n<p class=\"note\">DF = 100 E / E<sub>outside</sub> under the sky alone, E<sub>outside</sub> "
+           "its unobstructed horizontal illuminance. The externally reflected component is the ground seen through "
+           "openings; light reflected by obstructions outside counts as internally reflected.</p>\n";
+    }
     const int rays = r["grids"].front().value("indirect_rays_per_point", 0);
     h << "<p class=\"note\">Each point faces up. Direct light is exact (luminaires' photometry, emitting surfaces' "
          "closed form, with shadow rays); light from surfaces is gathered from the solution by "

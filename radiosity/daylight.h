@@ -1,0 +1,96 @@
+// Daylight: the sky and the sun as light sources of the same walk as luminaires (they
+// are Luminaire kinds `sky` and `sun`, shot first), reaching surfaces through openings
+// and glazing.
+//
+// Glazing. Faces of a material with a transmittance are windows (mesh/load.h keeps
+// them out of the lit mesh). Light from outside crossing them is scaled by their
+// transmittance (its luminance: tinted glass is not resolved by channel), the same at
+// every angle (diffuse transmission for the sky, the straight beam for the sun; real
+// glass passes less at grazing angles). Light from inside leaves through them and is
+// booked as escaped. Their reflection (about 8%) is not modelled.
+//
+// The sun at a point x facing n: E = E_n cos(theta) if the ray from x towards the sun
+// leaves the model, times the transmittance of the glass it crosses: exact shadows of
+// a point source at infinity.
+// The sky at x: E = integral over the hemisphere of n of L(d) T(d) cos(theta) d(omega),
+// L the sky model's luminance (the ground's below the horizon), T the transmittance
+// along d (0 where d meets a surface of the model). Estimated with side x side
+// stratified cosine-weighted directions, E = pi x their mean, jittered once per source
+// (not per point), so that neighbouring points see the same directions and the solution
+// carries no point-to-point noise that refinement would chase.
+#pragma once
+
+#include "radiosity/sky.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace dynrad {
+class RayCaster;
+struct GlazingTriangle;
+}  // namespace dynrad
+
+namespace dynrad::rad {
+
+class Visibility;
+struct Luminaire;
+
+// The windows, for rays from inside to outside.
+class Glazing {
+ public:
+  explicit Glazing(const std::vector<GlazingTriangle>& triangles);
+  ~Glazing();
+  Glazing(const Glazing&) = delete;
+  Glazing& operator=(const Glazing&) = delete;
+  // The product of the transmittances of the glass a ray from `origin` along `direction`
+  // crosses (1 when none).
+  double along(const Vec3d& origin, const Vec3d& direction) const;
+  std::size_t size() const { return transmittance_.size(); }
+
+ private:
+  std::vector<std::array<Vec3d, 3>> corners_;
+  std::vector<double> transmittance_;
+  std::unique_ptr<RayCaster> caster_;
+};
+
+struct Daylight {
+  SkyModel sky;
+  bool has_sky = false;
+  Vec3d sun{0, 0, 1};        // unit, towards the sun
+  double direct_normal = 0;  // lx, the sun's illuminance on a plane facing it
+  std::shared_ptr<const Glazing> glazing;
+  int side = 32;             // sky directions per point: side x side
+  std::uint64_t seed = 1;
+  double horizontal_sky = 0;  // the sky's unobstructed horizontal illuminance (lx), for daylight factors
+  std::string sky_summary, sun_summary;  // for logs and the report
+  // The sky's unobstructed illuminance per normal (and direction count), as computed.
+  mutable std::mutex cache_mutex;
+  mutable std::map<std::tuple<long long, long long, long long, int>, double> unobstructed;
+};
+
+// Illuminance (lx) at x facing n from a sky or sun luminaire; `side` overrides the
+// sky's directions when above 0. With `visibility`, shadow rays; without, the
+// unobstructed value (also written to *unoccluded). `ground`, when given, receives the
+// part that comes from below the horizon (the externally reflected light of the ground).
+double daylight_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
+                            double* unoccluded, int side = 0, double* ground = nullptr);
+
+// The "sky" section of a JSON scene file, as luminaires (the sun first, when it has a
+// direct-normal illuminance, then the sky). Keys:
+//   "type"        "cie_overcast" (the default), "cie" (with "number": 1-15) or "uniform"
+//   "horizontal_illuminance" or "diffuse_horizontal" (lx, from the sky alone), or
+//   "zenith_luminance" (cd/m^2); default 10000 lx horizontal
+//   "sun"         {"latitude", "longitude", "time": "2026-06-21T12:00", "timezone",
+//                  "direct_normal" (lx)} or {"altitude", "azimuth" (degrees, clockwise
+//                  from north), "direct_normal"}
+//   "ground_reflectance"  default 0.2
+//   "north"       [x, y]: north in the plan (default [0, 1]; up is +z)
+//   "rays"        sky directions per point in the solve: rays x rays (default 32)
+// Throws InputError naming the scene file and the key. None when there is no "sky".
+std::vector<Luminaire> read_daylight(const std::string& scene_path, const std::vector<GlazingTriangle>& glazing);
+
+}  // namespace dynrad::rad
