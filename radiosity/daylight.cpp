@@ -75,7 +75,7 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     if (visibility->trace(x, n, day.sun) != Visibility::Hit::nothing) return 0;
     return open * (day.glazing ? day.glazing->along(x, day.sun) : 1.0);
   }
-  // The sky: stratified cosine-weighted directions about n, one jitter per source.
+  // The sky: stratified cosine-weighted directions about n, the same for every point.
   const int k = side > 0 ? side : day.side;
   // Unobstructed, the value depends on n alone: remembered per normal (the solver asks
   // for it at every edge midpoint and centroid it examines).
@@ -90,22 +90,66 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
   }
   const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
   const Vec3d b = OpenMesh::cross(n, t);
-  std::uint64_t state = mix(day.seed ^ 0x5C1D0000ull);
-  double open = 0, seen = 0, below = 0;
+  // (u, v) in [0, 1)^2 to a direction: r = sqrt(u), phi = 2 pi v, cosine-weighted: equal
+  // areas of (u, v) carry equal shares of pi.
+  auto direction = [&](double u, double v) {
+    const double r = std::sqrt(u), phi = 2 * M_PI * v;
+    return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u))).normalized();
+  };
+  struct Sample {
+    double seen = 0, below = 0;
+    int code = -1;  // -1 blocked; else which glass it crossed and whether below the horizon
+  };
+  auto sample = [&](double u, double v) {
+    Sample out;
+    const Vec3d d = direction(u, v);
+    const double L = day.sky.luminance(d);
+    if (visibility->trace(x, n, d) != Visibility::Hit::nothing) return out;
+    const double through = day.glazing ? day.glazing->along(x, d) : 1.0;
+    const bool under = OpenMesh::dot(d, day.sky.up) <= 0;
+    out.seen = L * through;
+    out.below = under ? out.seen : 0.0;
+    out.code = static_cast<int>(std::lround(through * 1e6)) * 2 + (under ? 1 : 0);
+    return out;
+  };
+  double open = 0;
   for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) {
-      const double u = (i + uniform(state)) / k, v = (j + uniform(state)) / k;
-      const double r = std::sqrt(u), phi = 2 * M_PI * v;
-      const Vec3d d = (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u))).normalized();
-      const double L = day.sky.luminance(d);
-      if (!(L > 0)) continue;
-      open += L;
-      if (!visibility) continue;
-      if (visibility->trace(x, n, d) != Visibility::Hit::nothing) continue;
-      const double through = L * (day.glazing ? day.glazing->along(x, d) : 1.0);
-      seen += through;
-      if (OpenMesh::dot(d, day.sky.up) <= 0) below += through;
-    }
+    for (int j = 0; j < k; ++j) open += day.sky.luminance(direction((i + 0.5) / k, (j + 0.5) / k));
+  double seen = 0, below = 0;
+  if (visibility) {
+    // Stratum centres first. Where a stratum's neighbour (v wraps around) sees otherwise
+    // (an opening's edge, a pane's, the horizon), it is evaluated again with 8 x 8
+    // sub-strata: the edges of what the point sees are resolved 8 times finer than the
+    // rest, where all the error of the centres is.
+    std::vector<Sample> grid(static_cast<std::size_t>(k) * k);
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) grid[static_cast<std::size_t>(i * k + j)] = sample((i + 0.5) / k, (j + 0.5) / k);
+    const int m = 8;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const Sample& c = grid[static_cast<std::size_t>(i * k + j)];
+        bool edge = false;
+        for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+          const int i2 = i + di, j2 = (j + dj + k) % k;
+          if (i2 < 0 || i2 >= k) continue;
+          edge = edge || grid[static_cast<std::size_t>(i2 * k + j2)].code != c.code;
+        }
+        if (!edge) {
+          seen += c.seen;
+          below += c.below;
+          continue;
+        }
+        double sub_seen = 0, sub_below = 0;
+        for (int a = 0; a < m; ++a)
+          for (int e = 0; e < m; ++e) {
+            const Sample s = sample((i + (a + 0.5) / m) / k, (j + (e + 0.5) / m) / k);
+            sub_seen += s.seen;
+            sub_below += s.below;
+          }
+        seen += sub_seen / (m * m);
+        below += sub_below / (m * m);
+      }
+  }
   const double scale = M_PI / (static_cast<double>(k) * k);
   if (unoccluded) *unoccluded = open * scale;
   if (!visibility) {

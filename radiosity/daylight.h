@@ -14,10 +14,11 @@
 // a point source at infinity.
 // The sky at x: E = integral over the hemisphere of n of L(d) T(d) cos(theta) d(omega),
 // L the sky model's luminance (the ground's below the horizon), T the transmittance
-// along d (0 where d meets a surface of the model). Estimated with side x side
-// stratified cosine-weighted directions, E = pi x their mean, jittered once per source
-// (not per point), so that neighbouring points see the same directions and the solution
-// carries no point-to-point noise that refinement would chase.
+// along d (0 where d meets a surface of the model). Estimated over side x side strata of
+// cosine-weighted directions, E = pi x their mean: each stratum by its centre, except
+// those where a neighbour sees otherwise (the edge of an opening, of a pane, the
+// horizon), which take the mean of 8 x 8 sub-strata. The directions are the same for
+// every point, so the solution carries no point-to-point noise for refinement to chase.
 #pragma once
 
 #include "radiosity/sky.h"

@@ -140,4 +140,25 @@ std::size_t count_t_vertices(const SceneMesh& scene, double relative_tolerance) 
   return count;
 }
 
+// Form factor from a point to a parallel rectangle [x0, x1] x [y0, y1] at height h
+// above it, facing it: the classic sum over the four corners of the rectangle relative
+// to the point (Hottel's corner formula), written here independently of the solver's
+// contour integral.
+static double corner_factor(double a, double b, double h) {
+  // F from a point under the corner of an a x b rectangle at height h.
+  const double x = a / h, y = b / h;
+  return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+          y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+         (2 * M_PI);
+}
+
+double parallel_rectangle(double px, double py, double x0, double y0, double x1, double y1, double h) {
+  auto signed_corner = [&](double x, double y) {
+    const double a = x - px, b = y - py;
+    const double f = corner_factor(std::abs(a), std::abs(b), h);
+    return (a < 0) != (b < 0) ? -f : f;
+  };
+  return signed_corner(x1, y1) - signed_corner(x0, y1) - signed_corner(x1, y0) + signed_corner(x0, y0);
+}
+
 }  // namespace dynrad::test

@@ -46,6 +46,10 @@ bool file_exists(const std::string& path);
 // Total area of a polygon soup (each polygon by its Newell normal).
 double polygon_area(const PolygonSoup& soup);
 
+// Form factor from a point facing up to a parallel rectangle [x0, x1] x [y0, y1] facing
+// it at height h above (Hottel's corner formula, written independently of the solver).
+double parallel_rectangle(double px, double py, double x0, double y0, double x1, double y1, double h);
+
 }  // namespace dynrad::test
 
 namespace dynrad {

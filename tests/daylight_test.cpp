@@ -1,0 +1,307 @@
+// Daylight (radiosity/sky.h, daylight.h): sky models against their closed forms, the
+// sun's position against published ones, the sky through a roof opening against
+// pi L F, a sun beam through a window where the geometry puts it, and glazing's
+// transmittance scaling the light inside.
+#include "mesh/error.h"
+#include "mesh/load.h"
+#include "radiosity/daylight.h"
+#include "radiosity/luminaire.h"
+#include "radiosity/sky.h"
+#include "radiosity/visibility.h"
+#include "scene_builder.h"
+#include "test_support.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace dynrad {
+namespace {
+
+using test::SceneBuilder;
+
+TEST(Sky, OvercastAndUniformHorizontalIlluminanceMatchTheirClosedForms) {
+  rad::SkyModel sky;
+  sky.zenith_luminance = 1000;
+  sky.type = rad::SkyModel::Type::cie_overcast;
+  EXPECT_NEAR(sky.horizontal_illuminance(), 7 * M_PI * 1000 / 9, 1e-6 * 1000);
+  sky.type = rad::SkyModel::Type::uniform;
+  EXPECT_NEAR(sky.horizontal_illuminance(), M_PI * 1000, 1e-6 * 1000);
+  // CIE type 5 has no gradation and no indicatrix: uniform too, wherever the sun is.
+  sky.type = rad::SkyModel::Type::cie;
+  sky.cie_type = 5;
+  sky.sun = Vec3d(0.3, -0.5, 0.8).normalized();
+  EXPECT_NEAR(sky.horizontal_illuminance(), M_PI * 1000, 1e-6 * 1000);
+}
+
+TEST(Sky, HorizonOverZenithFollowsTheGradation) {
+  rad::SkyModel sky;
+  const Vec3d horizon = Vec3d(1, 0, 1e-9).normalized(), zenith(0, 0, 1);
+  sky.type = rad::SkyModel::Type::cie_overcast;
+  EXPECT_NEAR(sky.relative(horizon), 1.0 / 3.0, 1e-6);
+  EXPECT_NEAR(sky.relative(zenith), 1.0, 1e-12);
+  sky.type = rad::SkyModel::Type::cie;
+  sky.cie_type = 1;  // phi(90 deg) / phi(0) = 1 / (1 + 4 exp(-0.7))
+  EXPECT_NEAR(sky.relative(horizon), 1 / (1 + 4 * std::exp(-0.7)), 1e-6);
+  // Clear sky (type 12): brightest near the sun, darker opposite it at the same altitude.
+  sky.cie_type = 12;
+  sky.sun = Vec3d(0, -std::cos(M_PI / 4), std::sin(M_PI / 4));
+  const Vec3d near_sun = Vec3d(0, -1, 1.1).normalized(), away = Vec3d(0, 1, 1.1).normalized();
+  EXPECT_GT(sky.relative(near_sun), 3 * sky.relative(away));
+  EXPECT_THROW(rad::cie_sky_parameters(16), std::invalid_argument);
+}
+
+TEST(Sun, PositionMatchesPublishedOnes) {
+  // NREL SPA's worked example (Reda and Andreas 2004): Golden, Colorado,
+  // 2003-10-17 12:30:30 local (UTC-7): zenith 50.11162, azimuth 194.34024 degrees.
+  rad::LocalTime t = rad::parse_local_time("2003-10-17T12:30:30", -7);
+  const rad::SunPosition p = rad::sun_position(39.742476, -105.1786, t);
+  EXPECT_NEAR(p.zenith, 50.11162, 0.02);
+  EXPECT_NEAR(p.azimuth, 194.34024, 0.02);
+  // Greenwich at the June solstice of 2026, noon UTC: altitude 90 - 51.4769 + 23.436
+  // (the declination) plus 0.009 of refraction; the sun just east of south (solar noon
+  // comes about 2 minutes later).
+  t = rad::parse_local_time("2026-06-21T12:00", 0);
+  const rad::SunPosition g = rad::sun_position(51.4769, 0.0, t);
+  EXPECT_NEAR(90 - g.zenith, 90 - 51.4769 + 23.436 + 0.009, 0.03);
+  EXPECT_NEAR(g.declination, 23.436, 0.01);
+  EXPECT_GT(g.azimuth, 179.0);
+  EXPECT_LT(g.azimuth, 180.0);
+  // Directions: azimuth 90 (east) is +x when north is +y and up +z.
+  rad::SunPosition east;
+  east.zenith = 60;
+  east.azimuth = 90;
+  const Vec3d d = rad::sun_direction(east, Vec3d(0, 0, 1), Vec3d(0, 1, 0));
+  EXPECT_NEAR(d[0], std::sin(M_PI / 3), 1e-12);
+  EXPECT_NEAR(d[1], 0, 1e-12);
+  EXPECT_NEAR(d[2], 0.5, 1e-12);
+  EXPECT_THROW(rad::parse_local_time("2026-02-30T12:00", 0), std::invalid_argument);
+  EXPECT_THROW(rad::parse_local_time("2026-06-21 12:00", 0), std::invalid_argument);
+}
+
+// A 4 x 4 x 3 room facing inwards whose ceiling has a 1 x 1 opening over [1.5, 2.5]^2,
+// glazed with transmittance `glass` (0: open).
+LoadedScene roof_opening_room(double glass) {
+  SceneBuilder b;
+  const std::uint32_t wall = b.material("wall", 0.5);
+  b.box(Vec3d(0, 0, 0), Vec3d(4, 4, 3), wall, SceneBuilder::inward, {false, false, false, false, false, true});
+  const double z = 3;
+  auto down = [&](double x0, double y0, double x1, double y1) {  // a ceiling piece facing down
+    b.quad(Vec3d(x0, y0, z), Vec3d(x0, y1, z), Vec3d(x1, y1, z), Vec3d(x1, y0, z), wall);
+  };
+  down(0, 0, 1.5, 4);
+  down(2.5, 0, 4, 4);
+  down(1.5, 0, 2.5, 1.5);
+  down(1.5, 2.5, 2.5, 4);
+  PolygonSoup soup = b.soup();
+  if (glass > 0) {
+    soup.materials.push_back(Material{"glass", Rgb(0.0), Rgb(0.0), "test", true, Rgb(glass)});
+    const auto m = static_cast<std::uint32_t>(soup.materials.size() - 1);
+    const auto base = static_cast<std::uint32_t>(soup.points.size());
+    for (const Vec3d& p : {Vec3d(1.5, 1.5, z), Vec3d(1.5, 2.5, z), Vec3d(2.5, 2.5, z), Vec3d(2.5, 1.5, z)})
+      soup.points.push_back(p);
+    soup.polygons.push_back({base, base + 1, base + 2, base + 3});
+    soup.material.push_back(m);
+    soup.group.push_back(0);
+    soup.origin.push_back(SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+  }
+  return load_soup(soup, "roof opening");
+}
+
+std::vector<rad::Luminaire> sky_from(const test::TempDir& dir, const std::string& sky,
+                                     const std::vector<GlazingTriangle>& glazing) {
+  return rad::read_daylight(dir.write("sky.json", "{\"sky\": " + sky + "}"), glazing);
+}
+
+TEST(Daylight, SkyThroughARoofOpeningIsPiLTimesTheFormFactor) {
+  test::TempDir dir;
+  const LoadedScene room = roof_opening_room(0);
+  EXPECT_TRUE(room.glazing.empty());
+  const rad::Visibility visibility(*room.mesh);
+  const auto sources = sky_from(dir, R"({"type": "uniform", "zenith_luminance": 1000})", {});
+  ASSERT_EQ(sources.size(), 1u);
+  const rad::Luminaire& sky = sources[0];
+  double worst = 0, worst_default = 0;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{2, 2}, {1, 1}, {2.5, 1.2}, {0.4, 3.3}, {3, 2}}) {
+    const double exact = 1000 * M_PI * test::parallel_rectangle(x, y, 1.5, 1.5, 2.5, 2.5, 3.0);
+    const Vec3d p(x, y, 0), up(0, 0, 1);
+    const double fine = rad::daylight_illuminance(&visibility, sky, p, up, nullptr, 48);  // as grids gather
+    const double coarse = rad::daylight_illuminance(&visibility, sky, p, up, nullptr);  // the solve's 32 x 32
+    worst = std::max(worst, std::abs(fine / exact - 1));
+    worst_default = std::max(worst_default, std::abs(coarse / exact - 1));
+  }
+  EXPECT_LT(worst, 0.005);         // 48 x 48: what the grids gather with
+  EXPECT_LT(worst_default, 0.015);  // 32 x 32: the solve's own
+  std::printf("sky through a roof opening: worst error %.3f%% at 48x48 directions, %.3f%% at 32x32\n", 100 * worst,
+              100 * worst_default);
+  // Unobstructed, the uniform sky gives pi L on a horizontal plane.
+  double open = 0;
+  rad::daylight_illuminance(nullptr, sky, Vec3d(2, 2, 0), Vec3d(0, 0, 1), &open);
+  EXPECT_NEAR(open, 1000 * M_PI, 1e-9 * 1000);
+}
+
+TEST(Daylight, GlassScalesTheSkyByItsTransmittance) {
+  test::TempDir dir;
+  const LoadedScene open_room = roof_opening_room(0), glazed_room = roof_opening_room(0.6);
+  ASSERT_EQ(glazed_room.glazing.size(), 2u);  // the pane, triangulated
+  EXPECT_EQ(open_room.mesh->face_count(), glazed_room.mesh->face_count());  // not part of the lit mesh
+  const rad::Visibility a(*open_room.mesh), b(*glazed_room.mesh);
+  const auto open_sky = sky_from(dir, R"({"type": "cie_overcast"})", {});
+  const auto glazed_sky = sky_from(dir, R"({"type": "cie_overcast"})", glazed_room.glazing);
+  for (const Vec3d& p : {Vec3d(2, 2, 0), Vec3d(1, 3, 0), Vec3d(3.9, 2, 1.5)}) {
+    const Vec3d n = p[0] > 3.8 ? Vec3d(-1, 0, 0) : Vec3d(0, 0, 1);
+    const double e_open = rad::daylight_illuminance(&a, open_sky[0], p, n, nullptr);
+    const double e_glazed = rad::daylight_illuminance(&b, glazed_sky[0], p, n, nullptr);
+    ASSERT_GT(e_open, 0);
+    EXPECT_NEAR(e_glazed / e_open, 0.6, 1e-12);
+  }
+}
+
+TEST(Daylight, SunBeamThroughAWindowLandsWhereTheGeometrySays) {
+  // A 4 x 4 x 3 room; its south wall (y = 0) has a window over x in [1, 3], z in [1, 2],
+  // glazed at 0.8. The sun is due south at 45 degrees: the beam reaches the floor over
+  // x in [1, 3], y in [1, 2] with E = E_n sin 45 x 0.8, nothing elsewhere.
+  SceneBuilder b;
+  const std::uint32_t wall = b.material("wall", 0.5);
+  b.box(Vec3d(0, 0, 0), Vec3d(4, 4, 3), wall, SceneBuilder::inward, {false, false, true, false, false, false});
+  auto south = [&](double x0, double z0, double x1, double z1) {  // facing +y
+    b.quad(Vec3d(x1, 0, z0), Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), wall);
+  };
+  south(0, 0, 4, 1);
+  south(0, 2, 4, 3);
+  south(0, 1, 1, 2);
+  south(3, 1, 4, 2);
+  PolygonSoup soup = b.soup();
+  soup.materials.push_back(Material{"glass", Rgb(0.0), Rgb(0.0), "test", true, Rgb(0.8)});
+  const auto base = static_cast<std::uint32_t>(soup.points.size());
+  for (const Vec3d& p : {Vec3d(3, 0, 1), Vec3d(1, 0, 1), Vec3d(1, 0, 2), Vec3d(3, 0, 2)}) soup.points.push_back(p);
+  soup.polygons.push_back({base, base + 1, base + 2, base + 3});
+  soup.material.push_back(static_cast<std::uint32_t>(soup.materials.size() - 1));
+  soup.group.push_back(0);
+  soup.origin.push_back(SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+  const LoadedScene room = load_soup(soup, "sun room");
+  const rad::Visibility visibility(*room.mesh);
+  test::TempDir dir;
+  const auto sources =
+      sky_from(dir, R"({"sun": {"altitude": 45, "azimuth": 180, "direct_normal": 50000}})", room.glazing);
+  ASSERT_EQ(sources.size(), 2u);
+  const rad::Luminaire& sun = sources[0];
+  ASSERT_EQ(sun.kind, rad::Luminaire::Kind::sun);
+  const Vec3d up(0, 0, 1);
+  const double lit = 50000 * std::sin(M_PI / 4) * 0.8;
+  for (double x : {1.1, 2.0, 2.9})
+    for (double y : {1.05, 1.5, 1.95})
+      EXPECT_NEAR(rad::daylight_illuminance(&visibility, sun, Vec3d(x, y, 0), up, nullptr), lit, 1e-6 * lit)
+          << x << ", " << y;
+  for (const Vec3d& dark : {Vec3d(2, 0.95, 0), Vec3d(2, 2.05, 0), Vec3d(0.9, 1.5, 0), Vec3d(3.1, 1.5, 0)})
+    EXPECT_EQ(rad::daylight_illuminance(&visibility, sun, dark, up, nullptr), 0.0) << dark;
+  // A surface facing away from the sun gets none, whatever the geometry.
+  EXPECT_EQ(rad::daylight_illuminance(nullptr, sun, Vec3d(2, 3, 1), Vec3d(0, 1, 0), nullptr), 0.0);
+}
+
+// The roof-opening room as files for the command line: OBJ and MTL, the opening glazed
+// (MTL d = 1 - transmittance) or open.
+std::string roof_room_files(const test::TempDir& dir, const std::string& name, double glass) {
+  std::string obj = "mtllib " + name + ".mtl\nusemtl wall\n";
+  int v = 0;
+  auto quad = [&](std::array<Vec3d, 4> c) {
+    for (const Vec3d& p : c) obj += fmt::format("v {} {} {}\n", p[0], p[1], p[2]);
+    obj += fmt::format("f {} {} {} {}\n", v + 1, v + 2, v + 3, v + 4);
+    v += 4;
+  };
+  const double W = 4, H = 3;
+  quad({Vec3d(0, 0, 0), Vec3d(W, 0, 0), Vec3d(W, W, 0), Vec3d(0, W, 0)});  // floor, up
+  quad({Vec3d(W, 0, 0), Vec3d(0, 0, 0), Vec3d(0, 0, H), Vec3d(W, 0, H)});  // south, +y
+  quad({Vec3d(0, W, 0), Vec3d(W, W, 0), Vec3d(W, W, H), Vec3d(0, W, H)});  // north, -y
+  quad({Vec3d(0, 0, 0), Vec3d(0, W, 0), Vec3d(0, W, H), Vec3d(0, 0, H)});  // west, +x
+  quad({Vec3d(W, W, 0), Vec3d(W, 0, 0), Vec3d(W, 0, H), Vec3d(W, W, H)});  // east, -x
+  auto down = [&](double x0, double y0, double x1, double y1) {
+    quad({Vec3d(x0, y0, H), Vec3d(x0, y1, H), Vec3d(x1, y1, H), Vec3d(x1, y0, H)});
+  };
+  down(0, 0, 1.5, W);
+  down(2.5, 0, W, W);
+  down(1.5, 0, 2.5, 1.5);
+  down(1.5, 2.5, 2.5, W);
+  if (glass > 0) {
+    obj += "usemtl glass\n";
+    down(1.5, 1.5, 2.5, 2.5);
+  }
+  dir.write(name + ".obj", obj);
+  dir.write(name + ".mtl", fmt::format("newmtl wall\nKd 0.6 0.6 0.6\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - glass));
+  return dir.write(name + ".json", "{\"meshes\": [{\"file\": \"" + name +
+                                       ".obj\"}], \"sky\": {\"type\": \"cie_overcast\", \"horizontal_illuminance\": "
+                                       "10000}, \"grids\": [{\"name\": \"floor\", \"rectangle\": [0, 0, 4, 4], "
+                                       "\"height\": 0.8, \"spacing\": 0.5}]}");
+}
+
+TEST(Daylight, GlazingScalesTheWholeSolveAndTheBalanceHolds) {
+  test::TempDir dir;
+  nlohmann::json grids[2], reports[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string name = k ? "glazed" : "open";
+    const std::string scene = roof_room_files(dir, name, k ? 0.7 : 0.0);
+    const auto r = test::run_dynrad("solve '" + scene + "' -o '" + dir.path(name + ".ply") + "' --report '" +
+                                    dir.path(name + "_report.json") + "' --quality draft");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    reports[k] = nlohmann::json::parse(test::read_text(dir.path(name + "_report.json")));
+    grids[k] = reports[k]["grids"][0];
+    const auto& e = reports[k]["energy"];
+    for (int c = 0; c < 3; ++c) {
+      const double emitted = e["emitted"][c].get<double>();
+      EXPECT_NEAR(e["absorbed"][c].get<double>() + e["escaped"][c].get<double>() + e["unshot"][c].get<double>(),
+                  emitted, 1e-6 * emitted);
+    }
+  }
+  EXPECT_NEAR(grids[1]["Eavg"].get<double>() / grids[0]["Eavg"].get<double>(), 0.7, 0.7 * 0.01);
+  // Under the sky alone the grid reports daylight factors: 100 E / 10000 lx.
+  const nlohmann::json& df = grids[0]["daylight_factor"];
+  ASSERT_TRUE(df.is_object());
+  EXPECT_NEAR(df["DFavg"].get<double>(), grids[0]["Eavg"].get<double>() / 100, 1e-9 * df["DFavg"].get<double>());
+  EXPECT_NEAR(df["sky_component"].get<double>() + df["externally_reflected_component"].get<double>() +
+                  df["internally_reflected_component"].get<double>(),
+              df["DFavg"].get<double>(), 1e-6 * df["DFavg"].get<double>());
+}
+
+TEST(Daylight, BadSkiesAndGlassAreNamed) {
+  test::TempDir dir;
+  auto message = [&](const std::string& sky) {
+    try {
+      sky_from(dir, sky, {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(R"({"type": "cie"})").find("needs \"number\""), std::string::npos);
+  EXPECT_NE(message(R"({"type": "cie", "number": 16})").find("from 1 to 15"), std::string::npos);
+  EXPECT_NE(message(R"({"type": "cie", "number": 12})").find("give \"sun\""), std::string::npos);
+  EXPECT_NE(message(R"({"cloudy": true})").find("unknown key \"cloudy\" in sky"), std::string::npos);
+  EXPECT_NE(message(R"({"sun": {"latitude": 48, "longitude": 16, "time": "2026-06-21T12:00"}})").find("\"timezone\""),
+            std::string::npos);
+  EXPECT_NE(message(R"({"sun": {"latitude": 48, "longitude": 16, "time": "noon", "timezone": 1}})").find("sky.sun.time"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"horizontal_illuminance": 10000, "zenith_luminance": 3000})").find("one of"),
+            std::string::npos);
+  // Glass in a scene file and in an MTL.
+  dir.write("pane.obj", "mtllib pane.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+                        "usemtl wall\nf 1 2 3 4\nf 1 2 6 5\nusemtl glass\nf 4 3 7\n");
+  dir.write("pane.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl glass\nKd 0 0 0\nd 0.2\nTf 0.5 1 1\n");
+  const LoadedScene pane = load_scene(dir.path("pane.obj"));
+  ASSERT_EQ(pane.glazing.size(), 1u);
+  EXPECT_NEAR(pane.glazing[0].transmittance.r, 0.4, 1e-6);
+  EXPECT_NEAR(pane.glazing[0].transmittance.g, 0.8, 1e-6);
+  EXPECT_EQ(pane.mesh->face_count(), 4u);  // two quads, the glass left out
+  const std::string bad = dir.write(
+      "bad.json", "{\"meshes\": [{\"file\": \"pane.obj\"}], \"materials\": {\"glass\": {\"transmittance\": 1.2}}}");
+  try {
+    load_scene(bad);
+    ADD_FAILURE() << "a transmittance above 1 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("transmittance"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dynrad
