@@ -2,6 +2,7 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
+#include "radiosity/daylight.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/settings.h"
 #include "radiosity/visibility.h"
@@ -48,6 +49,8 @@ int run_info(const InfoOptions& options) {
   }
   double luminaire_flux = 0;
   for (const rad::Luminaire& l : luminaires) luminaire_flux += l.flux();
+  // Daylight: the scene's sky and sun, and its glazing.
+  const std::vector<rad::Luminaire> daylight = rad::read_daylight(options.load.input, scene.glazing);
 
   // Per-material statistics over the cleaned triangles.
   struct Usage {
@@ -140,6 +143,9 @@ int run_info(const InfoOptions& options) {
       j["luminaires"].push_back(e);
     }
     j["luminaire_flux"] = luminaire_flux;
+    j["daylight"] = nlohmann::json::array();
+    for (const rad::Luminaire& l : daylight) j["daylight"].push_back(l.describe());
+    j["glazing_triangles"] = scene.glazing.size();
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), luminaire_warnings.begin(), luminaire_warnings.end());
     j["warnings"] = warnings;
@@ -188,8 +194,12 @@ int run_info(const InfoOptions& options) {
     std::cout << fmt::format("luminaires      {}, {:.6g} lm in total\n", luminaires.size(), luminaire_flux);
     for (const rad::Luminaire& l : luminaires) std::cout << "  " << l.describe() << "\n";
   }
-  if (mesh.emitting_area() == 0 && luminaires.empty())
-    std::cout << "note            no emitting faces and no luminaires: a solve would have no light.\n";
+  for (const rad::Luminaire& l : daylight) std::cout << "daylight        " << l.describe() << "\n";
+  if (!scene.glazing.empty())
+    std::cout << fmt::format("glazing         {} triangles (materials with a transmittance: windows, not lit)\n",
+                             scene.glazing.size());
+  if (mesh.emitting_area() == 0 && luminaires.empty() && daylight.empty())
+    std::cout << "note            no emitting faces, no luminaires and no sky: a solve would have no light.\n";
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);
   for (const auto& w : luminaire_warnings) spdlog::warn("{}", w);
   return kExitOk;

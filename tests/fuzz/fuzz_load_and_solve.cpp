@@ -15,6 +15,7 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/daylight.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/views.h"
 #include "radiosity/luminaire.h"
@@ -117,7 +118,7 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
   ReadOptions read;
-  read.other_scene_keys = {"luminaires", "grids", "cameras"};  // as the command line reads scenes
+  read.other_scene_keys = {"luminaires", "grids", "cameras", "sky"};  // as the command line reads scenes
   (void)rad::read_grids(path);
   (void)rad::read_cameras(path);
   LoadedScene scene = load_scene(path, {}, {}, read);
@@ -125,6 +126,8 @@ void load_and_solve(const std::string& path) {
   // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;
   // here a scene may name downlight.ies, written beside it).
   std::vector<rad::Luminaire> luminaires = rad::read_luminaires(path);
+  // The sky section is read and checked (its shots cost too many rays for a fuzz run).
+  (void)rad::read_daylight(path, scene.glazing);
   if (luminaires.size() > 16) luminaires.resize(16);  // arrays: a few shots cover the paths
   if (!(mesh.emitting_area() > 0) && luminaires.empty()) return;  // the command line refuses this (exit 2)
   // Coarse patches and a few shots: the point is every code path, not accuracy.
