@@ -16,8 +16,8 @@
 // L the sky model's luminance (the ground's below the horizon), T the transmittance
 // along d (0 where d meets a surface of the model). Estimated over side x side strata of
 // cosine-weighted directions, E = pi x their mean: each stratum by its centre, except
-// those where a neighbour sees otherwise (the edge of an opening, of a pane, the
-// horizon), which take the mean of 8 x 8 sub-strata. The directions are the same for
+// those where a neighbour sees otherwise (the edge of an opening, of a pane), which take
+// the mean of 8 x 8 sub-strata. The directions are the same for
 // every point, so the solution carries no point-to-point noise for refinement to chase.
 #pragma once
 
