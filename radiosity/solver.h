@@ -127,6 +127,8 @@ class Solver {
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
+  // The sources as solved: daylight's flux (what reached the surfaces) filled in.
+  const std::vector<Luminaire>& luminaires() const { return luminaires_; }
   // For benchmarks: see Visibility::record_rays (single thread only).
   void record_rays(std::vector<RTCRay>* sink) { visibility_->record_rays(sink); }
   // For benchmarks: see Visibility::time_calls.

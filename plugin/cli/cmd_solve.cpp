@@ -332,8 +332,11 @@ int run_solve(SolveCliOptions& options) {
     j["grids"] = grid_results;
     j["views"] = views_json(pictures);
     j["luminaires"] = nlohmann::json::array();
-    for (const rad::Luminaire& l : luminaires)
+    for (const rad::Luminaire& l : solver.luminaires())
       j["luminaires"].push_back({{"name", l.name},
+                                 {"type", l.kind == rad::Luminaire::Kind::sky   ? "sky"
+                                          : l.kind == rad::Luminaire::Kind::sun ? "sun"
+                                                                                : "luminaire"},
                                  {"flux", l.flux()},
                                  {"position", {l.position[0], l.position[1], l.position[2]}},
                                  {"aim", {l.nadir[0], l.nadir[1], l.nadir[2]}},

@@ -134,7 +134,8 @@ void write_html_report(const std::string& path, const json& r) {
 
   // Luminaires.
   if (r.contains("luminaires") && !r["luminaires"].empty()) {
-    h << "<h2>Luminaires</h2>\n<table>\n<tr><th>Name</th><th>Flux (lm)</th><th>Position</th><th>Aim</th>"
+    h << "<h2>Light sources</h2>\n<p class=\"note\">For the sky and the sun, the flux is what reaches the "
+         "model's surfaces.</p>\n<table>\n<tr><th>Name</th><th>Flux (lm)</th><th>Position</th><th>Aim</th>"
          "<th>Description</th></tr>\n";
     for (const json& l : r["luminaires"]) {
       auto vec = [](const json& v) {
@@ -142,9 +143,10 @@ void write_html_report(const std::string& path, const json& r) {
                    ? fmt::format("({:.3g}, {:.3g}, {:.3g})", v[0].get<double>(), v[1].get<double>(), v[2].get<double>())
                    : std::string("–");
       };
+      const bool daylight = l.value("type", "") == "sky" || l.value("type", "") == "sun";
       h << "<tr><td>" << text(l["name"]) << "</td><td class=\"n\">" << number(l["flux"], "{:.0f}") << "</td><td>"
-        << vec(l["position"]) << "</td><td>" << vec(l["aim"]) << "</td><td>" << text(l["description"])
-        << "</td></tr>\n";
+        << (daylight ? "–" : vec(l["position"])) << "</td><td>" << (daylight ? "–" : vec(l["aim"])) << "</td><td>"
+        << text(l["description"]) << "</td></tr>\n";
     }
     h << "</table>\n";
   }
