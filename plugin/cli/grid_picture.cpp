@@ -65,7 +65,7 @@ rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit) {
   const long nx = std::max(1L, cells.nx), ny = std::max(1L, cells.ny);
   const int ppc = std::clamp(static_cast<int>(640 / std::max(nx, ny)), 4, 64);
   const int map_w = static_cast<int>(nx) * ppc, map_h = static_cast<int>(ny) * ppc;
-  const int header = 104, margin = 16, legend_w = 150;
+  const int header = 118, margin = 16, legend_w = 150;
   rad::Image image;
   image.width = margin + map_w + margin + legend_w;
   image.height = header + std::max(map_h, 300) + margin;
