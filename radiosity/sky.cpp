@@ -92,8 +92,16 @@ double SkyModel::luminance(const Vec3d& d) const {
 }
 
 double SkyModel::horizontal_illuminance() const {
-  static std::vector<double> x, w;
-  if (x.empty()) gauss_legendre(64, x, w);
+  struct Rule {
+    std::vector<double> x, w;
+  };
+  static const Rule rule = [] {  // built once, thread-safely
+    Rule r;
+    gauss_legendre(64, r.x, r.w);
+    return r;
+  }();
+  const std::vector<double>& x = rule.x;
+  const std::vector<double>& w = rule.w;
   Vec3d east = OpenMesh::cross(std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), up).normalized();
   const Vec3d north = OpenMesh::cross(up, east);
   const int azimuths = 256;
