@@ -1,5 +1,6 @@
 #include "radiosity/sky.h"
 
+#include <boost/math/quadrature/gauss.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,29 +15,6 @@ namespace dynrad::rad {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre polynomial).
-void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.resize(n);
-  w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), derivative = 1;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      derivative = n * (z * p1 - p0) / (z * z - 1);
-      const double step = p1 / derivative;
-      z -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    x[i] = z;
-    w[i] = 2 / ((1 - z * z) * derivative * derivative);
-  }
-}
 
 }  // namespace
 
@@ -92,31 +70,21 @@ double SkyModel::luminance(const Vec3d& d) const {
 }
 
 double SkyModel::horizontal_illuminance() const {
-  struct Rule {
-    std::vector<double> x, w;
-  };
-  static const Rule rule = [] {  // built once, thread-safely
-    Rule r;
-    gauss_legendre(64, r.x, r.w);
-    return r;
-  }();
-  const std::vector<double>& x = rule.x;
-  const std::vector<double>& w = rule.w;
-  Vec3d east = OpenMesh::cross(std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), up).normalized();
+  const Vec3d east = OpenMesh::cross(std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), up).normalized();
   const Vec3d north = OpenMesh::cross(up, east);
   const int azimuths = 256;
-  double sum = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double cz = 0.5 * (x[i] + 1), sz = std::sqrt(1 - cz * cz);  // cos Z over (0, 1)
-    double ring = 0;
+  // E = integral of L cos Z d(omega): over cos Z in (0, 1) (Gauss-Legendre, Boost.Math)
+  // and the azimuth (midpoint rule, exact for the smooth periodic integrand).
+  auto ring = [&](double cz) {
+    const double sz = std::sqrt(std::max(0.0, 1 - cz * cz));
+    double sum = 0;
     for (int k = 0; k < azimuths; ++k) {
       const double phi = 2 * M_PI * (k + 0.5) / azimuths;
-      ring += relative(up * cz + east * (sz * std::cos(phi)) + north * (sz * std::sin(phi)));
+      sum += relative(up * cz + east * (sz * std::cos(phi)) + north * (sz * std::sin(phi)));
     }
-    // E = integral of L cos Z d(omega) = integral over cos Z in (0, 1) and azimuth of L cos Z.
-    sum += 0.5 * w[i] * cz * ring * (2 * M_PI / azimuths);
-  }
-  return zenith_luminance * sum;
+    return cz * sum * (2 * M_PI / azimuths);
+  };
+  return zenith_luminance * boost::math::quadrature::gauss<double, 64>::integrate(ring, 0.0, 1.0);
 }
 
 std::string SkyModel::describe() const {
