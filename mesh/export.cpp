@@ -2,6 +2,7 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/export_gltf.h"
 #include "mesh/io_util.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -17,6 +18,10 @@ using OutMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,
                             const VertexValues& values, const WriteOptions& options) {
+  if (detail::extension_of(path) == ".glb") {
+    write_glb(path, scene, split, values);
+    return;
+  }
   std::vector<Vec3d> positions(split.size());
   for (std::size_t i = 0; i < split.size(); ++i) positions[i] = scene.mesh().point(split.source[i]);
   std::vector<std::array<std::uint32_t, 3>> triangles;
@@ -33,7 +38,7 @@ void write_triangles_with_values(const std::string& path, const std::vector<Vec3
                                  const WriteOptions& options) {
   const std::string ext = detail::extension_of(path);
   if (ext != ".ply" && ext != ".off")
-    throw OutputError(path, "unsupported output type '" + ext + "'; use .ply or .off.");
+    throw OutputError(path, "unsupported output type '" + ext + "'; use .ply, .off or (a lit model) .glb.");
   const std::size_t n = positions.size();
   if (values.linear.size() != n || values.display.size() != n || values.quality.size() != n)
     throw std::logic_error("write_triangles_with_values: value arrays do not match the vertices");

@@ -1,4 +1,5 @@
-// Writing a mesh with per-vertex values: PLY (binary by default) or OFF (COFF).
+// Writing a mesh with per-vertex values: PLY (binary by default) or OFF (COFF); a
+// scene mesh also as binary glTF (.glb, mesh/export_gltf.h).
 //
 // PLY vertex properties, in order: float x y z; uchar red green blue (display colour,
 // the only colour MeshLab reads); float <name>_r <name>_g <name>_b (linear values);

@@ -20,13 +20,13 @@ build_packages=(
   build-essential cmake ninja-build pkg-config
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
-  libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev
+  libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev libtinygltf-dev
   libfreetype-dev fonts-dejavu-core
 )
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
-  blender
+  blender python3-numpy
   clang libclang-rt-dev llvm
 )
 case $mode in

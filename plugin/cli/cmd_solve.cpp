@@ -153,6 +153,12 @@ int run_solve(SolveCliOptions& options) {
   if (options.no_pushdown_ambient) oracle.pushdown_ambient = false;
   refine.max_elements = options.max_elements;
   options.solve.ambient_display = options.ambient;
+  {
+    std::string ext = std::filesystem::path(options.output).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".ply" && ext != ".off" && ext != ".glb")
+      throw OutputError(options.output, "unsupported output type '" + ext + "'; use .ply, .off or .glb (binary glTF).");
+  }
   check_output_writable(options.output);
   if (!options.report.empty()) check_output_writable(options.report);
   // Calculation grids of the scene file: results beside the output, named after it
@@ -431,7 +437,7 @@ Command add_solve_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("solve", "Light a model with radiosity and write per-vertex results");
   add_load_options(*command, options->load);
   add_simplify_flag(*command, options->load);
-  command->add_option("-o,--output", options->output, "Lit mesh to write (.ply or .off)")->required();
+  command->add_option("-o,--output", options->output, "Lit mesh to write: .ply, .off or .glb (binary glTF 2.0)")->required();
   command->add_option("--quality", options->quality,
                       "draft, normal or high: the estimated error to stop at (3%, 1%, 0.3%) and the patches, levels "
                       "and oracle that reach it; options below override")

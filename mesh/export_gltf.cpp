@@ -1,0 +1,154 @@
+#include "mesh/export_gltf.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/scene_mesh.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+namespace dynrad {
+
+namespace {
+
+// Appends `count` floats to the buffer (4-byte aligned) and returns its view's index.
+int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
+  std::vector<unsigned char>& buffer = model.buffers[0].data;
+  while (buffer.size() % 4) buffer.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buffer.insert(buffer.end(), p, p + bytes);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size() - 1);
+}
+
+int add_accessor(tinygltf::Model& model, int view, int component, int type, std::size_t count,
+                 std::vector<double> min = {}, std::vector<double> max = {}) {
+  tinygltf::Accessor a;
+  a.bufferView = view;
+  a.componentType = component;
+  a.type = type;
+  a.count = count;
+  a.minValues = std::move(min);
+  a.maxValues = std::move(max);
+  model.accessors.push_back(a);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+double srgb_to_linear(std::uint8_t byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+std::string attribute_name(const std::string& name) {
+  std::string out = "_";
+  for (char c : name) out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+}  // namespace
+
+void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values) {
+  const std::size_t n = split.size();
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "dynrad";
+  model.buffers.resize(1);
+  model.extensionsUsed.push_back("KHR_materials_unlit");
+
+  // Vertex attributes, shared by every primitive.
+  std::vector<float> position(3 * n), colour(3 * n), linear(3 * n);
+  std::vector<double> lo(3, 1e300), hi(3, -1e300);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& p = scene.mesh().point(split.source[i]);
+    for (int c = 0; c < 3; ++c) {
+      position[3 * i + c] = static_cast<float>(p[c]);
+      lo[c] = std::min(lo[c], static_cast<double>(position[3 * i + c]));
+      hi[c] = std::max(hi[c], static_cast<double>(position[3 * i + c]));
+      colour[3 * i + c] = static_cast<float>(srgb_to_linear(values.display[i][c]));
+      linear[3 * i + c] = static_cast<float>(values.linear[i][c]);
+    }
+  }
+  std::map<std::string, int> attributes;
+  attributes["POSITION"] = add_accessor(model, add_view(model, position.data(), position.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n, lo, hi);
+  attributes["COLOR_0"] = add_accessor(model, add_view(model, colour.data(), colour.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+  attributes[attribute_name(values.name)] =
+      add_accessor(model, add_view(model, linear.data(), linear.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+  for (const auto& [name, scalar] : values.scalars)
+    attributes[attribute_name(name)] =
+        add_accessor(model, add_view(model, scalar.data(), scalar.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, n);
+
+  // Materials: base colour the reflectance, unlit.
+  for (const Material& m : scene.materials()) {
+    tinygltf::Material g;
+    g.name = m.name;
+    g.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};  // the vertex colours carry the light
+    g.pbrMetallicRoughness.metallicFactor = 0;
+    g.pbrMetallicRoughness.roughnessFactor = 1;
+    g.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+    tinygltf::Value::Object extras;
+    extras["reflectance"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(m.reflectance.r),
+                                                                   tinygltf::Value(m.reflectance.g),
+                                                                   tinygltf::Value(m.reflectance.b)});
+    g.extras = tinygltf::Value(extras);
+    model.materials.push_back(g);
+  }
+
+  // Indices per (group, material), in face order.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> indices;
+  for (auto f : scene.mesh().faces()) {
+    auto& list = indices[{scene.group(f), scene.material_id(f)}];
+    for (int k = 0; k < 3; ++k) list.push_back(split.corner[3 * static_cast<std::size_t>(f.idx()) + k]);
+  }
+  tinygltf::Scene root;
+  std::map<std::uint32_t, int> mesh_of_group;
+  for (const auto& [key, list] : indices) {
+    const auto [group, material] = key;
+    auto found = mesh_of_group.find(group);
+    if (found == mesh_of_group.end()) {
+      tinygltf::Mesh mesh;
+      mesh.name = group < scene.group_names().size() ? scene.group_names()[group] : "group" + std::to_string(group);
+      model.meshes.push_back(mesh);
+      tinygltf::Node node;
+      node.name = mesh.name;
+      node.mesh = static_cast<int>(model.meshes.size() - 1);
+      model.nodes.push_back(node);
+      root.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+      found = mesh_of_group.emplace(group, node.mesh).first;
+    }
+    tinygltf::Primitive primitive;
+    primitive.attributes = attributes;
+    primitive.material = static_cast<int>(material);
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.indices =
+        add_accessor(model, add_view(model, list.data(), list.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, list.size());
+    model.meshes[static_cast<std::size_t>(found->second)].primitives.push_back(primitive);
+  }
+  model.scenes.push_back(root);
+  model.defaultScene = 0;
+
+  std::ostringstream bytes;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, bytes, false, true)) throw OutputError(path, "tinygltf could not write it.");
+  AtomicFile file(path);
+  const std::string data = bytes.str();
+  file.stream().write(data.data(), static_cast<std::streamsize>(data.size()));
+  file.commit();
+}
+
+}  // namespace dynrad

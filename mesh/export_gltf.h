@@ -1,0 +1,19 @@
+// Writing a lit mesh as binary glTF 2.0 (.glb), with tinygltf (Debian's libtinygltf).
+//
+// One buffer holds every vertex once: POSITION (float VEC3), COLOR_0 (float VEC3, the
+// display colours made linear again, as glTF specifies: what MeshLab shows from the PLY's
+// bytes, a viewer shows from these), and custom attributes `_<NAME>` (the linear values,
+// float VEC3, e.g. `_RADIOSITY`) and `_<SCALAR>` for each named scalar (float, e.g.
+// `_ILLUMINANCE`). One node and mesh per input group (its name), one primitive per
+// material in it (its name; base colour its reflectance, KHR_materials_unlit so that
+// viewers show the baked light as it is rather than lighting it again).
+#pragma once
+
+#include "mesh/export.h"
+
+namespace dynrad {
+
+// Writes atomically; OutputError when the file cannot be written.
+void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values);
+
+}  // namespace dynrad
