@@ -70,7 +70,9 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
   std::vector<float> position(3 * n), colour(3 * n), linear(3 * n);
   std::vector<double> lo(3, 1e300), hi(3, -1e300);
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3d& p = scene.mesh().point(split.source[i]);
+    // dynrad's z up to glTF's y up: (x, y, z) -> (x, z, -y).
+    const Vec3d& q = scene.mesh().point(split.source[i]);
+    const Vec3d p(q[0], q[2], -q[1]);
     for (int c = 0; c < 3; ++c) {
       position[3 * i + c] = static_cast<float>(p[c]);
       lo[c] = std::min(lo[c], static_cast<double>(position[3 * i + c]));

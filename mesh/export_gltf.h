@@ -1,6 +1,8 @@
 // Writing a lit mesh as binary glTF 2.0 (.glb), with tinygltf (Debian's libtinygltf).
 //
-// One buffer holds every vertex once: POSITION (float VEC3), COLOR_0 (float VEC3, the
+// Positions go from dynrad's z up to glTF's y up: (x, y, z) -> (x, z, -y) (a y-up model
+// should be read with --up y to arrive standing). One buffer holds every vertex once:
+// POSITION (float VEC3), COLOR_0 (float VEC3, the
 // display colours made linear again, as glTF specifies: what MeshLab shows from the PLY's
 // bytes, a viewer shows from these), and custom attributes `_<NAME>` (the linear values,
 // float VEC3, e.g. `_RADIOSITY`) and `_<SCALAR>` for each named scalar (float, e.g.

@@ -11,15 +11,37 @@ namespace dynrad {
 namespace detail {
 PolygonSoup read_obj(const std::string& path, const ReadOptions& options);
 PolygonSoup read_openmesh(const std::string& path, const ReadOptions& options);
+PolygonSoup read_assimp(const std::string& path, const ReadOptions& options);
+bool assimp_reads(const std::string& extension);
 }  // namespace detail
+
+namespace {
+
+PolygonSoup read_by_extension(const std::string& path, const std::string& ext, const ReadOptions& options) {
+  if (ext == ".obj") return detail::read_obj(path, options);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return detail::read_openmesh(path, options);
+  if (ext != ".json" && detail::assimp_reads(ext)) return detail::read_assimp(path, options);
+  throw InputError(path, 0,
+                   "unsupported file type '" + ext + "'. dynrad reads .obj (with .mtl), .ply, .off, .stl, .json scene "
+                   "files, and through assimp IFC, glTF (.gltf, .glb), COLLADA (.dae), 3DS, FBX and more.");
+}
+
+}  // namespace
 
 PolygonSoup read_model(const std::string& path, const ReadOptions& options) {
   const std::string ext = detail::extension_of(path);
-  if (ext == ".obj") return detail::read_obj(path, options);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return detail::read_openmesh(path, options);
-  throw InputError(path, 0,
-                   "unsupported file type '" + ext + "'. dynrad reads .obj (with .mtl), .ply, .off, .stl and "
-                   ".json scene files.");
+  PolygonSoup soup = read_by_extension(path, ext, options);
+  // assimp hands every format over y up (it turns z-up IFC and COLLADA files itself);
+  // dynrad's own readers keep the file's axes, which dynrad takes as z up.
+  const bool through_assimp = ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl";
+  const int up = options.up >= 0 ? options.up : through_assimp ? 1 : 2;
+  if (!(options.scale > 0) || !std::isfinite(options.scale))
+    throw InputError(path, 0, "the scale must be a positive number.");
+  for (Vec3d& p : soup.points) {
+    if (up == 1) p = Vec3d(p[0], -p[2], p[1]);
+    p *= options.scale;
+  }
+  return soup;
 }
 
 namespace {

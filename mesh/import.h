@@ -24,6 +24,13 @@ struct ReadOptions {
   // Top-level keys of a JSON scene file that the caller reads itself (the light
   // sources, say): accepted and left alone here. Any other unknown key is an error.
   std::vector<std::string> other_scene_keys;
+  // The model file's up axis: 2 (z, dynrad's own), 1 (y: turned so that +y becomes +z,
+  // (x, y, z) -> (x, -z, y)), or -1: the reader's convention (y for what assimp reads,
+  // since it hands every format over y up; z for dynrad's own readers).
+  int up = -1;
+  // Model units to metres (or whatever unit the scene's lights and grids are in):
+  // 0.001 for millimetres. Applied after the turn.
+  double scale = 1;
 };
 
 // What a reflectance of 1 or more becomes when read leniently: each of its channels
@@ -32,7 +39,9 @@ struct ReadOptions {
 constexpr double kMaxReflectance = 0.95;
 
 // Reads one model file, chosen by extension: .obj (with its .mtl libraries), .ply,
-// .off, .stl. Materials come from MTL (Kd -> reflectance, Ke -> emission) or from
+// .off, .stl with dynrad's own readers; IFC, glTF (.gltf, .glb), COLLADA, 3DS, FBX and
+// whatever else assimp reads through assimp (mesh/read_assimp.cpp). Then turned to z
+// up and scaled (ReadOptions::up, scale). Materials come from MTL (Kd -> reflectance, Ke -> emission) or from
 // per-face colours (PLY/OFF, read as sRGB and linearised); faces without either get
 // the material "default". Materials referenced but not defined are kept with
 // `defined == false` so that a scene file can supply them; read_input() settles any

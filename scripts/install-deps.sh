@@ -21,12 +21,13 @@ build_packages=(
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev libtinygltf-dev
+  libassimp-dev
   libfreetype-dev fonts-dejavu-core
 )
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
-  blender python3-numpy
+  blender python3-numpy assimp-testmodels
   clang libclang-rt-dev llvm
 )
 case $mode in

@@ -9,6 +9,7 @@ imports the .glb with Blender's own glTF importer and checks that:
 - there is one object per group of the OBJ (the box's walls and blocks by name);
 - every corner's colour in Blender is the COLOR_0 the file holds for a vertex at that
   position, to the byte Blender stores it in;
+- the box stands: its floor is Blender's lowest surface (z up), as in the OBJ (y up);
 - the custom attribute _RADIOSITY and the unlit materials are in the file.
 The .glb is read here with struct (no glTF library), so the check does not share the
 writer's code.
@@ -31,8 +32,10 @@ def fail(message):
     sys.exit(1)
 
 
-def solve(out):
-    subprocess.run([DYNRAD, "solve", SAMPLE, "-o", out, "--quality", "draft", "-q"], check=True)
+def solve(out, up):
+    # The Cornell box is y up: read with --up y it stands on its floor in dynrad (z up)
+    # and, written to glTF's y up, in Blender again.
+    subprocess.run([DYNRAD, "solve", SAMPLE, "-o", out, "--quality", "draft", "-q", "--up", up], check=True)
 
 
 def read_glb(path):
@@ -75,8 +78,8 @@ def linear_to_byte(c):
 
 def main():
     ply, glb = os.path.join(WORK, "cornell.ply"), os.path.join(WORK, "cornell.glb")
-    solve(ply)
-    solve(glb)
+    solve(ply, "y")
+    solve(glb, "y")
     doc, floats = read_glb(glb)
     attributes = doc["meshes"][0]["primitives"][0]["attributes"]
     for name in ("POSITION", "COLOR_0", "_RADIOSITY"):
@@ -113,7 +116,7 @@ def main():
         colour = mesh.color_attributes[0]
         for loop in mesh.loops:
             co = o.matrix_world @ mesh.vertices[loop.vertex_index].co
-            key = tuple(round(x, 4) for x in (co[0], co[2], -co[1]))  # Blender's z-up back to the file's y-up
+            key = tuple(round(x, 4) for x in (co[0], co[2], -co[1]))  # Blender's z up back to the file's y up
             seen = tuple(linear_to_byte(x) for x in colour.data[loop.index].color[:3])
             candidates = at.get(key)
             corners += 1
@@ -124,6 +127,11 @@ def main():
             worst = max(worst, best)
             if best > 1:
                 mismatched += 1
+    floor = [o for o in objects if o.name == "floor"][0]
+    lowest = min((o.matrix_world @ v.co)[2] for o in objects for v in o.data.vertices)
+    floor_top = max((floor.matrix_world @ v.co)[2] for v in floor.data.vertices)
+    if floor_top - lowest > 1e-3 * 550:
+        fail("the floor is not at the bottom: floor up to z %.3f, lowest point %.3f" % (floor_top, lowest))
     print("glTF round trip: %d objects, %d vertices, %d triangles, %d corners, %d mismatched, worst %d/255"
           % (len(objects), total_vertices, total_triangles, corners, mismatched, worst))
     if mismatched:

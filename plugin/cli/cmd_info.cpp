@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include <map>
 #include <spdlog/spdlog.h>
 
 #include <iostream>
@@ -61,6 +63,19 @@ int run_info(const InfoOptions& options) {
   for (auto f : mesh.mesh().faces()) {
     usage[mesh.material_id(f)].faces++;
     usage[mesh.material_id(f)].area += mesh.area(f);
+  }
+  // Groups (OBJ g/o, a scene's mesh files, the nodes of an IFC or glTF): faces per name.
+  std::vector<std::size_t> group_faces(mesh.group_names().size(), 0);
+  for (auto f : mesh.mesh().faces())
+    if (mesh.group(f) < group_faces.size()) ++group_faces[mesh.group(f)];
+  std::size_t groups_with_faces = 0;
+  for (std::size_t count : group_faces) groups_with_faces += count > 0;
+  // IFC elements (assimp names their nodes IfcType_Name_GUID): elements per type.
+  std::map<std::string, std::size_t> ifc_types;
+  for (std::size_t g = 0; g < group_faces.size(); ++g) {
+    const std::string& name = mesh.group_names()[g];
+    if (group_faces[g] == 0 || name.rfind("Ifc", 0) != 0) continue;
+    ++ifc_types[name.substr(0, name.find('_'))];
   }
   const std::vector<std::pair<const char*, std::size_t>> repairs = {
       {"merged_points", r.merged_points},
@@ -143,6 +158,10 @@ int run_info(const InfoOptions& options) {
       j["luminaires"].push_back(e);
     }
     j["luminaire_flux"] = luminaire_flux;
+    j["ifc_types"] = ifc_types;
+    j["groups"] = nlohmann::json::object();
+    for (std::size_t g = 0; g < group_faces.size(); ++g)
+      if (group_faces[g] > 0) j["groups"][mesh.group_names()[g]] = group_faces[g];
     j["daylight"] = nlohmann::json::array();
     for (const rad::Luminaire& l : daylight) j["daylight"].push_back(l.describe());
     j["glazing_triangles"] = scene.glazing.size();
@@ -193,6 +212,12 @@ int run_info(const InfoOptions& options) {
   if (!luminaires.empty()) {
     std::cout << fmt::format("luminaires      {}, {:.6g} lm in total\n", luminaires.size(), luminaire_flux);
     for (const rad::Luminaire& l : luminaires) std::cout << "  " << l.describe() << "\n";
+  }
+  std::cout << fmt::format("groups          {} with faces (info --json lists them)\n", groups_with_faces);
+  if (!ifc_types.empty()) {
+    std::cout << "IFC elements   ";
+    for (const auto& [type, count] : ifc_types) std::cout << " " << type << " " << count;
+    std::cout << "\n";
   }
   for (const rad::Luminaire& l : daylight) std::cout << "daylight        " << l.describe() << "\n";
   if (!scene.glazing.empty())

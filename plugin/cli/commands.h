@@ -34,6 +34,8 @@ struct LoadOptions {
   bool imprint = true;   // imprint where surfaces meet, remove hidden parts (mesh/imprint.h)
   bool simplify = true;  // merge flat regions before patching (mesh/simplify.h)
   bool strict = false;   // refuse what is otherwise read with a warning (mesh/import.h)
+  std::string up = "auto";  // the model's up axis: auto (the format's), y or z
+  double scale = 1;         // model units to metres
 
   CleanupOptions cleanup() const {
     CleanupOptions options;
@@ -44,6 +46,8 @@ struct LoadOptions {
   ReadOptions read() const {
     ReadOptions options;
     options.strict = strict;
+    options.up = up == "y" ? 1 : up == "z" ? 2 : -1;
+    options.scale = scale;
     options.other_scene_keys = {"luminaires", "grids", "cameras", "sky"};  // rad::read_luminaires, _grids, _cameras, _daylight
     return options;
   }

@@ -25,7 +25,16 @@ void add_cleanup_options(CLI::App& command, LoadOptions& options) {
 }
 
 void add_load_options(CLI::App& command, LoadOptions& options) {
-  command.add_option("input", options.input, "Model (.obj, .ply, .off, .stl) or scene file (.json)")->required();
+  command.add_option("input", options.input,
+                     "Model (.obj, .ply, .off, .stl; through assimp .ifc, .gltf, .glb, .dae, .3ds, .fbx, ...) or scene "
+                     "file (.json)")
+      ->required();
+  command.add_option("--up", options.up,
+                     "The model's up axis: y (turned to z up) or z; auto: y for what assimp reads (it turns IFC and COLLADA to y up itself), z for .obj, .ply, .off and .stl")
+      ->check(CLI::IsMember({"auto", "y", "z"}))
+      ->capture_default_str();
+  command.add_option("--scale", options.scale, "Multiply the model's coordinates by this (0.001: millimetres to metres)")
+      ->check(CLI::PositiveNumber);
   add_cleanup_options(command, options);
 }
 
