@@ -31,11 +31,12 @@ ci_runs() {
     stl) echo 50000 ;;
     ies) echo 110000 ;;  # the photometry readers, from memory: about 10 s each (2026-12)
     ldt) echo 60000 ;;
+    gltf) echo 20000 ;;  # assimp's glTF reader, text glTF with embedded buffers (2026-12)
     *) echo 60000 ;;
   esac
 }
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene ies ldt)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene gltf ies ldt)
 
 scripts/install-deps.sh
 scripts/configure-reliability.sh

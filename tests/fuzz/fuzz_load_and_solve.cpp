@@ -1,5 +1,5 @@
-// libFuzzer target for one import path (DYNRAD_FUZZ_FORMAT: obj, ply, off, stl or
-// scene). The input bytes become a file of that format, which goes the whole way a
+// libFuzzer target for one import path (DYNRAD_FUZZ_FORMAT: obj, ply, off, stl, scene
+// or gltf, the last through assimp). The input bytes become a file of that format, which goes the whole way a
 // user's file goes: read, cleanup, scene mesh, patches, then a short dynamic solve.
 //
 // InputError is the expected answer to bad input and is caught here. Anything else is
@@ -33,7 +33,7 @@
 #include <string_view>
 
 #ifndef DYNRAD_FUZZ_FORMAT
-#error "DYNRAD_FUZZ_FORMAT must name the format: obj, ply, off, stl or scene"
+#error "DYNRAD_FUZZ_FORMAT must name the format: obj, ply, off, stl, scene or gltf"
 #endif
 
 namespace {
