@@ -67,8 +67,10 @@ LoadedScene load_scene(const std::string& path, const CleanupOptions& options, c
 
 LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const CleanupOptions& options,
                       const SimplifyOptions& simplify) {
-  if (!is_finite(soup.bounds().lo) || !is_finite(soup.bounds().hi))
-    throw InputError(path, 0, "has coordinates that are not finite.");
+  // Every point (the bounds alone would miss a NaN: comparisons with it are false).
+  for (std::size_t i = 0; i < soup.points.size(); ++i)
+    if (!is_finite(soup.points[i]))
+      throw InputError(path, 0, "point " + std::to_string(i + 1) + " has a coordinate that is not a finite number.");
   // Cleanup and the solver work with areas, the size squared: it must be a normal double.
   const double size = soup.bounds().diagonal();
   if (!std::isfinite(size * size) || size * size < std::numeric_limits<double>::min()) {

@@ -87,6 +87,10 @@ PolygonSoup read_assimp(const std::string& path, const ReadOptions& options) {
       const auto base = static_cast<std::uint32_t>(soup.points.size());
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
         const aiVector3D p = transform * mesh.mVertices[v];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+          throw InputError(path, 0,
+                           "vertex " + std::to_string(v + 1) + " of mesh '" + mesh.mName.C_Str() + "' (node '" + group +
+                               "') is not a finite number once placed by its node's transform.");
         soup.points.emplace_back(p.x, p.y, p.z);
       }
       const std::uint32_t material = mesh.mMaterialIndex < soup.materials.size() ? mesh.mMaterialIndex : 0;
