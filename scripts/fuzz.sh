@@ -31,7 +31,7 @@ ci_runs() {
     stl) echo 50000 ;;
     ies) echo 110000 ;;  # the photometry readers, from memory: about 10 s each (2026-12)
     ldt) echo 60000 ;;
-    gltf) echo 20000 ;;  # assimp's glTF reader, text glTF with embedded buffers (2026-12)
+    gltf) echo 4000 ;;  # assimp's glTF reader, text glTF with embedded buffers: about 80-150 a second (2026-12)
     *) echo 60000 ;;
   esac
 }
