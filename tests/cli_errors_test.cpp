@@ -289,7 +289,9 @@ TEST(BadInput, UnreadableInput) {
   expect_refused(dir, dir.path("does-not-exist.obj"), {"does-not-exist.obj", "not found"});
   std::filesystem::create_directory(dir.path("folder.obj"));
   expect_refused(dir, dir.path("folder.obj"), {"folder.obj", "directory"});
-  expect_refused(dir, dir.write("model.fbx", "x"), {"model.fbx", "unsupported"});
+  expect_refused(dir, dir.write("model.xyz9", "x"), {"model.xyz9", "unsupported"});
+  // Formats assimp reads are read through it; a broken one is refused with its reason.
+  expect_refused(dir, dir.write("model.fbx", "x"), {"model.fbx", "could not be read (assimp"});
 }
 
 TEST(BadInput, UnwritableOutput) {
