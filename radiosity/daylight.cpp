@@ -112,9 +112,15 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     out.code = static_cast<int>(std::lround(through * 1e6));
     return out;
   };
+  // The unobstructed sum: computed once per normal (the cache above), not again for
+  // every point that asks with rays.
   double open = 0;
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) open += day.sky.luminance(direction((i + 0.5) / k, (j + 0.5) / k));
+  if (visibility) {
+    open = daylight_illuminance(nullptr, l, x, n, nullptr, k) / (M_PI / (static_cast<double>(k) * k));
+  } else {
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) open += day.sky.luminance(direction((i + 0.5) / k, (j + 0.5) / k));
+  }
   double seen = 0, below = 0;
   if (visibility) {
     // Stratum centres first. Where a stratum's neighbour (v wraps around) sees otherwise
