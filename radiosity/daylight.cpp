@@ -4,7 +4,6 @@
 #include "mesh/load.h"
 #include "mesh/ray_cast.h"
 #include "radiosity/luminaire.h"
-#include "radiosity/random.h"
 #include "radiosity/visibility.h"
 
 #include <algorithm>

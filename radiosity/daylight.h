@@ -60,12 +60,10 @@ class Glazing {
 
 struct Daylight {
   SkyModel sky;
-  bool has_sky = false;
   Vec3d sun{0, 0, 1};        // unit, towards the sun
   double direct_normal = 0;  // lx, the sun's illuminance on a plane facing it
   std::shared_ptr<const Glazing> glazing;
   int side = 32;             // sky directions per point: side x side
-  std::uint64_t seed = 1;
   double horizontal_sky = 0;  // the sky's unobstructed horizontal illuminance (lx), for daylight factors
   std::string sky_summary, sun_summary;  // for logs and the report
   // The sky's unobstructed illuminance per normal (and direction count), as computed.

@@ -148,7 +148,6 @@ std::vector<Luminaire> read_daylight(const std::string& path, const std::vector<
   day->sky_summary = model.describe() + fmt::format(", ground reflectance {:.3g}; {}x{} directions per point{}",
                                                     ground_reflectance, day->side, day->side,
                                                     glazing.empty() ? "" : fmt::format(", {} glazing triangles", glazing.size()));
-  day->has_sky = true;
   std::vector<Luminaire> out;
   if (day->direct_normal > 0) {
     Luminaire sun;
