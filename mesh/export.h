@@ -27,8 +27,18 @@ struct VertexValues {
   std::vector<std::pair<std::string, std::vector<float>>> scalars;
 };
 
+// A perspective camera to carry along with the mesh (glTF only): where a viewer opens
+// the model, and the named viewpoints it offers. Positions in the mesh's coordinates.
+struct Viewpoint {
+  std::string name;
+  Vec3d eye, target, up{0, 0, 1};
+  double fov_degrees = 60;  // vertical
+  double aspect = 4.0 / 3.0;
+};
+
 struct WriteOptions {
   bool ascii = false;  // PLY only; OFF is always ASCII
+  std::vector<Viewpoint> viewpoints;  // glTF only: camera nodes, in this order
 };
 
 // Any triangle mesh given by positions and corner indices, with one value per vertex.

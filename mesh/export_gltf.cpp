@@ -56,9 +56,67 @@ std::string attribute_name(const std::string& name) {
   return out;
 }
 
+// dynrad's z up to glTF's y up: (x, y, z) -> (x, z, -y).
+Vec3d y_up(const Vec3d& q) { return Vec3d(q[0], q[2], -q[1]); }
+
+// A node holding a perspective camera at the viewpoint. glTF cameras look along their
+// local -z with +y up, so the node's rotation takes (x, y, -z) to (right, up, forward).
+tinygltf::Node camera_node(tinygltf::Model& model, const Viewpoint& v, double zfar) {
+  tinygltf::Camera camera;
+  camera.name = v.name;
+  camera.type = "perspective";
+  camera.perspective.yfov = v.fov_degrees * M_PI / 180;
+  camera.perspective.aspectRatio = v.aspect;
+  camera.perspective.znear = 0.01;
+  camera.perspective.zfar = zfar;
+  model.cameras.push_back(camera);
+
+  const Vec3d forward = (y_up(v.target) - y_up(v.eye)).normalized();
+  const Vec3d right = OpenMesh::cross(forward, y_up(v.up)).normalized();
+  const Vec3d up = OpenMesh::cross(right, forward);
+  const Vec3d back = -forward;
+  // Rotation matrix columns (right, up, back) to a unit quaternion (x, y, z, w).
+  const double m00 = right[0], m11 = up[1], m22 = back[2];
+  const double trace = m00 + m11 + m22;
+  double x, y, z, w;
+  if (trace > 0) {
+    const double s = 2 * std::sqrt(1 + trace);
+    w = s / 4;
+    x = (up[2] - back[1]) / s;
+    y = (back[0] - right[2]) / s;
+    z = (right[1] - up[0]) / s;
+  } else if (m00 > m11 && m00 > m22) {
+    const double s = 2 * std::sqrt(1 + m00 - m11 - m22);
+    w = (up[2] - back[1]) / s;
+    x = s / 4;
+    y = (up[0] + right[1]) / s;
+    z = (back[0] + right[2]) / s;
+  } else if (m11 > m22) {
+    const double s = 2 * std::sqrt(1 + m11 - m00 - m22);
+    w = (back[0] - right[2]) / s;
+    x = (up[0] + right[1]) / s;
+    y = s / 4;
+    z = (back[1] + up[2]) / s;
+  } else {
+    const double s = 2 * std::sqrt(1 + m22 - m00 - m11);
+    w = (right[1] - up[0]) / s;
+    x = (back[0] + right[2]) / s;
+    y = (back[1] + up[2]) / s;
+    z = s / 4;
+  }
+  tinygltf::Node node;
+  node.name = v.name;
+  node.camera = static_cast<int>(model.cameras.size() - 1);
+  const Vec3d eye = y_up(v.eye);
+  node.translation = {eye[0], eye[1], eye[2]};
+  node.rotation = {x, y, z, w};
+  return node;
+}
+
 }  // namespace
 
-void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values) {
+void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values,
+               const std::vector<Viewpoint>& viewpoints) {
   const std::size_t n = split.size();
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -70,9 +128,7 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
   std::vector<float> position(3 * n), colour(3 * n), linear(3 * n);
   std::vector<double> lo(3, 1e300), hi(3, -1e300);
   for (std::size_t i = 0; i < n; ++i) {
-    // dynrad's z up to glTF's y up: (x, y, z) -> (x, z, -y).
-    const Vec3d& q = scene.mesh().point(split.source[i]);
-    const Vec3d p(q[0], q[2], -q[1]);
+    const Vec3d p = y_up(scene.mesh().point(split.source[i]));
     for (int c = 0; c < 3; ++c) {
       position[3 * i + c] = static_cast<float>(p[c]);
       lo[c] = std::min(lo[c], static_cast<double>(position[3 * i + c]));
@@ -140,6 +196,15 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
         add_accessor(model, add_view(model, list.data(), list.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, list.size());
     model.meshes[static_cast<std::size_t>(found->second)].primitives.push_back(primitive);
+  }
+  // Far enough to see the whole model from outside it (tinygltf writes zfar 0 otherwise,
+  // which the specification does not allow).
+  double diagonal = 0;
+  for (int c = 0; c < 3; ++c) diagonal += n ? (hi[c] - lo[c]) * (hi[c] - lo[c]) : 0;
+  const double zfar = std::max(1.0, 10 * std::sqrt(diagonal));
+  for (const Viewpoint& v : viewpoints) {
+    model.nodes.push_back(camera_node(model, v, zfar));
+    root.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
   }
   model.scenes.push_back(root);
   model.defaultScene = 0;

@@ -8,7 +8,8 @@
 // float VEC3, e.g. `_RADIOSITY`) and `_<SCALAR>` for each named scalar (float, e.g.
 // `_ILLUMINANCE`). One node and mesh per input group (its name), one primitive per
 // material in it (its name; base colour its reflectance, KHR_materials_unlit so that
-// viewers show the baked light as it is rather than lighting it again).
+// viewers show the baked light as it is rather than lighting it again). Viewpoints
+// become perspective cameras on nodes of their own, after the meshes' nodes, in order.
 #pragma once
 
 #include "mesh/export.h"
@@ -16,6 +17,7 @@
 namespace dynrad {
 
 // Writes atomically; OutputError when the file cannot be written.
-void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values);
+void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values,
+               const std::vector<Viewpoint>& viewpoints = {});
 
 }  // namespace dynrad

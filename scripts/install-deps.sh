@@ -3,11 +3,13 @@
 # Safe to run repeatedly; needs root (or sudo).
 #
 #   scripts/install-deps.sh build   # building and running dynrad: compiler, CMake, Ninja,
-#                                   # pkg-config, the -dev libraries and the DejaVu font
-#                                   # (the grids' pictures) (scripts/demo.sh)
+#                                   # pkg-config, the -dev libraries, the DejaVu font
+#                                   # (the grids' pictures) and three.js (libjs-three,
+#                                   # inlined in `dynrad view`'s pages) (scripts/demo.sh)
 #   scripts/install-deps.sh [all]   # also what the tests and CI need: GoogleTest, Google
 #                                   # Benchmark, MeshLab and Xvfb (viewer test), Blender
-#                                   # (add-on test), clang, libclang-rt-dev (libFuzzer and
+#                                   # (add-on test), Chromium (the walk-through page's
+#                                   # test), clang, libclang-rt-dev (libFuzzer and
 #                                   # sanitizer runtimes) and llvm (llvm-symbolizer, for
 #                                   # readable sanitizer stacks) for scripts/fuzz.sh and
 #                                   # scripts/test-sanitizers.sh
@@ -21,13 +23,14 @@ build_packages=(
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev libtinygltf-dev
-  libassimp-dev
+  libassimp-dev libjs-three
   libfreetype-dev fonts-dejavu-core
 )
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
   blender python3-numpy assimp-testmodels
+  chromium
   clang libclang-rt-dev llvm
 )
 case $mode in

@@ -147,22 +147,17 @@ TEST(SolveCommand, SameAnswerForOneAndTwoThreads) {
 }  // namespace
 }  // namespace dynrad
 
-#include <png.h>
 
 namespace dynrad {
 namespace {
 
 // Mean of all channels of an 8-bit RGB PNG.
 double mean_brightness(const std::string& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  EXPECT_TRUE(png_image_begin_read_from_file(&image, path.c_str())) << path;
-  image.format = PNG_FORMAT_RGB;
-  std::vector<png_byte> pixels(PNG_IMAGE_SIZE(image));
-  EXPECT_TRUE(png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr));
+  const test::Picture picture = test::read_png(path);
+  EXPECT_GT(picture.width, 0) << path;
   double sum = 0;
-  for (auto p : pixels) sum += p;
-  return pixels.empty() ? 0 : sum / pixels.size();
+  for (auto p : picture.rgb) sum += p;
+  return picture.rgb.empty() ? 0 : sum / static_cast<double>(picture.rgb.size());
 }
 
 TEST(SolveCommand, PreviewIsNotBlankAndFollowsTheLight) {

@@ -3,7 +3,9 @@
 
 #include "mesh/soup.h"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace dynrad::test {
 
@@ -38,6 +40,14 @@ CommandResult run_shell(const std::string& command);
 // (sanitizer) builds: a SIGINT that arrives while a background process still ignores
 // it would be lost.
 CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name);
+
+// An 8-bit PNG as RGB, top row first; empty (width 0) when it cannot be read.
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  const std::uint8_t* at(int x, int y) const { return &rgb[3 * (static_cast<std::size_t>(y) * width + x)]; }
+};
+Picture read_png(const std::string& path);
 
 std::string sample(const std::string& name);
 std::string read_text(const std::string& path);

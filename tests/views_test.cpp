@@ -13,7 +13,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <png.h>
 
 #include <cmath>
 #include <functional>
@@ -233,24 +232,6 @@ TEST(Views, CameraEntriesAreCheckedAndNamed) {
             std::string::npos);
 }
 
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<png_byte> rgb;
-};
-
-Picture read_picture(const std::string& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  Picture p;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) return p;
-  image.format = PNG_FORMAT_RGB;
-  p.rgb.resize(PNG_IMAGE_SIZE(image));
-  png_image_finish_read(&image, nullptr, p.rgb.data(), 0, nullptr);
-  p.width = static_cast<int>(image.width);
-  p.height = static_cast<int>(image.height);
-  return p;
-}
-
 TEST(Views, PreviewInsideAClosedBuildingIsNotBlack) {
   // The storey sample is closed all round (walls, floor and ceiling slabs); its outside
   // is unlit. The preview must look inside.
@@ -258,7 +239,7 @@ TEST(Views, PreviewInsideAClosedBuildingIsNotBlack) {
   const auto r = test::run_dynrad("solve '" + test::sample("storey.obj") + "' -o '" + dir.path("s.ply") +
                                   "' --quality draft --preview '" + dir.path("s.png") + "' --preview-width 160");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const Picture p = read_picture(dir.path("s.png"));
+  const test::Picture p = test::read_png(dir.path("s.png"));
   ASSERT_EQ(p.width, 160);
   std::size_t bright = 0;
   double sum = 0;

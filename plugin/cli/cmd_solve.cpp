@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace dynrad::cli {
 namespace {
@@ -280,20 +281,19 @@ int run_solve(SolveCliOptions& options) {
     values.scalars.emplace_back("illuminance", std::move(illuminance));
     values.scalars.emplace_back("luminance", std::move(luminance));
   }
-  WriteOptions write;
-  write.ascii = options.ascii;
-  write_mesh_with_values(options.output, mesh, result.split, values, write);
-
-  // Grids, views and the preview gather from or render the lit mesh (radiosity/lit_scene.h).
+  // Grids, views, the preview and the glTF's cameras gather from or render the lit mesh
+  // (radiosity/lit_scene.h).
+  const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   std::unique_ptr<rad::LitScene> scene_lit;
-  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty())
+  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb)
     scene_lit = std::make_unique<rad::LitScene>(
         rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
   std::vector<rad::View> found_views;
-  if (automatic_views || !options.preview.empty()) found_views = rad::automatic_views(*scene_lit, grids);
-  if (!options.preview.empty()) {
-    // The view that shows the most lit surface: from outside an open model (a Cornell
-    // box), from a room's corner in a closed building.
+  if (automatic_views || !options.preview.empty() || glb) found_views = rad::automatic_views(*scene_lit, grids);
+  // The view that shows the most lit surface: from outside an open model (a Cornell box),
+  // from a room's corner in a closed building.
+  std::optional<rad::View> chosen_view;
+  if (!options.preview.empty() || glb) {
     const int w = options.preview_width, h = options.preview_width * 3 / 4;
     std::vector<rad::View> candidates = rad::overview_candidates(*scene_lit, w, h);
     for (rad::View v : found_views)
@@ -302,11 +302,20 @@ int run_solve(SolveCliOptions& options) {
         v.height = h;
         candidates.push_back(v);
       }
-    const rad::View chosen_view = rad::best_lit_view(*scene_lit, candidates, exposure);
-    const rad::RenderedView rendered = rad::render_view(*scene_lit, chosen_view.camera, w, h);
+    chosen_view = rad::best_lit_view(*scene_lit, candidates, exposure);
+  }
+
+  WriteOptions write;
+  write.ascii = options.ascii;
+  if (glb) write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));
+  write_mesh_with_values(options.output, mesh, result.split, values, write);
+
+  if (!options.preview.empty()) {
+    const int w = options.preview_width, h = options.preview_width * 3 / 4;
+    const rad::RenderedView rendered = rad::render_view(*scene_lit, chosen_view->camera, w, h);
     write_png(options.preview, rad::colour_image(rendered, exposure, {90, 0, 0}, {0, 0, 0}));
-    const Vec3d& eye = chosen_view.camera.eye;
-    spdlog::info("wrote {} ({}: camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, chosen_view.description, eye[0],
+    const Vec3d& eye = chosen_view->camera.eye;
+    spdlog::info("wrote {} ({}: camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, chosen_view->description, eye[0],
                  eye[1], eye[2]);
   }
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).

@@ -26,6 +26,7 @@ Command add_diff_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_probe_command(CLI::App& app);
 Command add_grid_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

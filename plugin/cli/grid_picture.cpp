@@ -8,9 +8,18 @@
 
 namespace dynrad::cli {
 
+const std::array<std::array<double, 3>, 6>& false_colour_stops() {
+  static const std::array<std::array<double, 3>, 6> stops{{{0.05, 0.05, 0.45},
+                                                           {0.0, 0.35, 1.0},
+                                                           {0.0, 0.85, 0.9},
+                                                           {0.2, 0.8, 0.2},
+                                                           {1.0, 0.9, 0.0},
+                                                           {0.9, 0.1, 0.1}}};
+  return stops;
+}
+
 std::array<std::uint8_t, 3> false_colour(double t) {
-  static const double stops[6][3] = {{0.05, 0.05, 0.45}, {0.0, 0.35, 1.0}, {0.0, 0.85, 0.9},
-                                     {0.2, 0.8, 0.2},    {1.0, 0.9, 0.0},  {0.9, 0.1, 0.1}};
+  const auto& stops = false_colour_stops();
   t = std::clamp(t, 0.0, 1.0) * 5;
   const int k = std::min(4, static_cast<int>(t));
   const double f = t - k;

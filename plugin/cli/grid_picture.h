@@ -14,6 +14,9 @@ namespace dynrad::cli {
 // The colour of t in [0, 1] on the false-colour scale: dark blue, blue, cyan, green,
 // yellow, red.
 std::array<std::uint8_t, 3> false_colour(double t);
+// Its colours at t = 0, 0.2, ..., 1 (linear in between), for other renderers of the same
+// scale (the walk-through page).
+const std::array<std::array<double, 3>, 6>& false_colour_stops();
 
 // The legend's top (a round number at or above `peak`: 1, 2, 2.5 or 5 times a power of
 // ten) and its step (a fifth or a tenth of it).

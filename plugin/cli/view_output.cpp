@@ -110,4 +110,24 @@ nlohmann::json views_json(const std::vector<ViewPictures>& views) {
   return out;
 }
 
+std::vector<Viewpoint> viewpoints(const rad::View& start, const std::vector<rad::View>& others) {
+  std::vector<Viewpoint> out;
+  auto add = [&](const rad::View& v) {
+    if (v.camera.orthographic) return;
+    for (const Viewpoint& p : out)
+      if (p.name == v.name) return;
+    Viewpoint p;
+    p.name = v.name;
+    p.eye = v.camera.eye;
+    p.target = v.camera.target;
+    p.up = v.camera.up;
+    p.fov_degrees = v.camera.fov_degrees;
+    p.aspect = v.height > 0 ? static_cast<double>(v.width) / v.height : 4.0 / 3.0;
+    out.push_back(p);
+  };
+  add(start);
+  for (const rad::View& v : others) add(v);
+  return out;
+}
+
 }  // namespace dynrad::cli

@@ -3,6 +3,7 @@
 // scene's units, PREFIX_view_NAME.png and PREFIX_view_NAME_luminance.png.
 #pragma once
 
+#include "mesh/export.h"
 #include "radiosity/views.h"
 
 #include <nlohmann/json.hpp>
@@ -35,5 +36,9 @@ std::vector<ViewPictures> write_views(const std::string& prefix, const rad::LitS
                                       const std::vector<rad::View>& views, double exposure);
 
 nlohmann::json views_json(const std::vector<ViewPictures>& views);
+
+// The cameras a glTF file carries for a viewer: `start` first (where the viewer opens),
+// then the other perspective views (plans, being orthographic, are left out).
+std::vector<Viewpoint> viewpoints(const rad::View& start, const std::vector<rad::View>& others);
 
 }  // namespace dynrad::cli

@@ -1,0 +1,443 @@
+// dynrad's walk-through: the lit model of a .glb (embedded in the page as base64), shown
+// as the solver left it (unlit materials, the light baked into the vertex colours), with
+// first-person navigation, the file's viewpoints, an exposure control, false colour of
+// luminance and a read-out of the values under the cross-hair.
+//
+// Runs on three.js r111 (Debian's libjs-three, inlined before this script) and its
+// GLTFLoader. The page's state is kept on <body> for tests and scripts:
+//   data-state   "loading", "ready" (the first frame is drawn) or "error"
+//   data-errors  the number of errors reported (script errors, console.error)
+//   data-view    the viewpoint shown last
+// The URL's hash may choose how the page opens: #view=NAME&mode=false&ev=-1&top=200.
+(function () {
+  'use strict';
+
+  const config = JSON.parse(document.getElementById('dynrad-config').textContent);
+  const body = document.body;
+  const canvas = document.getElementById('view');
+  const readout = document.getElementById('readout');
+  const message = document.getElementById('message');
+
+  function fail(text) {
+    body.dataset.state = 'error';
+    message.textContent = text;
+    message.hidden = false;
+  }
+
+  // --- The model: base64 to bytes, bytes to three.js objects ---------------------------
+  function modelBytes() {
+    const text = document.getElementById('dynrad-model').textContent.replace(/\s+/g, '');
+    const binary = atob(text);
+    const bytes = new Uint8Array(binary.length);
+    for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+    return bytes.buffer;
+  }
+
+  const renderer = new THREE.WebGLRenderer({canvas: canvas, antialias: true});
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0x202020);
+  const camera = new THREE.PerspectiveCamera(60, 4 / 3, 0.01, 1000);
+  camera.rotation.order = 'YXZ';  // yaw about the vertical, then pitch
+
+  // Colour attributes are shared by every primitive (one buffer holds each vertex once),
+  // so each is kept once here with its linear values and the values read out with it.
+  const layers = [];  // {colour, linear, luminance, illuminance, radiosity}
+  let meshes = [];
+  let viewpoints = [];  // {name, position, quaternion, fov}
+  let bounds = new THREE.Box3();
+
+  function collectLayers(root) {
+    const seen = new Set();
+    root.traverse(function (object) {
+      if (!object.isMesh) return;
+      meshes.push(object);
+      const attributes = object.geometry.attributes;
+      if (!attributes.color || seen.has(attributes.color)) return;
+      seen.add(attributes.color);
+      layers.push({
+        colour: attributes.color,
+        linear: Float32Array.from(attributes.color.array),
+        luminance: attributes._luminance || null,
+        illuminance: attributes._illuminance || null,
+        radiosity: attributes._radiosity || null,
+        itemSize: attributes.color.itemSize,
+      });
+    });
+  }
+
+  // --- Colour: exposure and sRGB, or false colour ------------------------------------
+  const state = {mode: 'colour', ev: 0, top: 1, view: ''};
+
+  function srgb(c) {
+    c = Math.max(0, c);
+    return c <= 0.0031308 ? 12.92 * c : Math.min(1, 1.055 * Math.pow(c, 1 / 2.4) - 0.055);
+  }
+
+  // The same stops as the report's false-colour pictures (plugin/cli/grid_picture.cpp).
+  function falseColour(t, out) {
+    const stops = config.palette;
+    t = Math.min(1, Math.max(0, t)) * (stops.length - 1);
+    const k = Math.min(stops.length - 2, Math.floor(t));
+    const f = t - k;
+    for (let c = 0; c < 3; ++c) out[c] = stops[k][c] * (1 - f) + stops[k + 1][c] * f;
+    return out;
+  }
+
+  // Luminance of vertex i of a layer: the file's _LUMINANCE (cd/m^2), else B / pi from
+  // its _RADIOSITY.
+  function luminanceAt(layer, i) {
+    if (layer.luminance) return layer.luminance.array[i];
+    if (layer.radiosity) {
+      const r = layer.radiosity.array;
+      return (0.2126 * r[3 * i] + 0.7152 * r[3 * i + 1] + 0.0722 * r[3 * i + 2]) / Math.PI;
+    }
+    return NaN;
+  }
+
+  function paint() {
+    const gain = Math.pow(2, state.ev);
+    const rgb = [0, 0, 0];
+    for (const layer of layers) {
+      const out = layer.colour.array, linear = layer.linear, size = layer.itemSize;
+      const count = out.length / size;
+      for (let i = 0; i < count; ++i) {
+        const o = i * size;
+        if (state.mode === 'false') {
+          const l = luminanceAt(layer, i);
+          if (isNaN(l)) rgb[0] = rgb[1] = rgb[2] = 0.3;
+          else falseColour(l / state.top, rgb);
+          out[o] = rgb[0]; out[o + 1] = rgb[1]; out[o + 2] = rgb[2];
+        } else {
+          out[o] = srgb(gain * linear[o]);
+          out[o + 1] = srgb(gain * linear[o + 1]);
+          out[o + 2] = srgb(gain * linear[o + 2]);
+        }
+      }
+      layer.colour.needsUpdate = true;
+    }
+    document.getElementById('legend').hidden = state.mode !== 'false';
+    document.getElementById('mode').textContent = state.mode === 'false' ? 'True colour (F)' : 'False colour (F)';
+    document.getElementById('ev-value').textContent = (state.ev > 0 ? '+' : '') + state.ev.toFixed(1) + ' EV';
+    drawLegend();
+    requestDraw();
+  }
+
+  function drawLegend() {
+    const bar = document.getElementById('legend-bar');
+    const stops = config.palette.map(function (c, k) {
+      return 'rgb(' + c.map(function (v) { return Math.round(255 * v); }).join(',') + ') ' +
+             (100 * (1 - k / (config.palette.length - 1))).toFixed(1) + '%';
+    });
+    bar.style.background = 'linear-gradient(to bottom, ' + stops.reverse().join(', ') + ')';
+    const ticks = document.getElementById('legend-ticks');
+    ticks.textContent = '';
+    const step = niceStep(state.top);
+    for (let v = 0; v <= state.top * (1 + 1e-9); v += step) {
+      const tick = document.createElement('div');
+      tick.style.top = (100 * (1 - v / state.top)) + '%';
+      tick.textContent = formatValue(v) + (v >= state.top * (1 - 1e-9) ? '+' : '');
+      ticks.appendChild(tick);
+    }
+    document.getElementById('legend-unit').textContent = 'Luminance, ' + config.luminance_unit;
+    document.getElementById('top').value = state.top;
+  }
+
+  // The legend's top, as the report's pictures choose it (plugin/cli/grid_picture.cpp's
+  // legend_scale): the least of 1, 2, 2.5, 5 and 10 times a power of ten at or above the
+  // 98th percentile of the vertices' luminance.
+  function automaticTop() {
+    const values = [];
+    for (const layer of layers) {
+      const count = layer.colour.array.length / layer.itemSize;
+      for (let i = 0; i < count; ++i) {
+        const l = luminanceAt(layer, i);
+        if (l > 0) values.push(l);
+      }
+    }
+    if (!values.length) return 1;
+    values.sort(function (x, y) { return x - y; });
+    const peak = values[Math.min(values.length - 1, Math.floor(0.98 * values.length))];
+    const power = Math.pow(10, Math.floor(Math.log10(peak)));
+    for (const m of [1, 2, 2.5, 5, 10])
+      if (m * power >= peak * (1 - 1e-12)) return m * power;
+    return 10 * power;
+  }
+
+  function niceStep(top) {
+    const power = Math.pow(10, Math.floor(Math.log10(top) + 1e-9));
+    const m = top / power;
+    const near = function (x) { return Math.abs(m - x) < 1e-6; };
+    return top / (near(2.5) ? 5 : near(1) || near(10) ? 10 : near(2) ? 8 : 5);
+  }
+
+  function formatValue(v) {
+    if (v === 0) return '0';
+    if (Math.abs(v) >= 100) return v.toFixed(0);
+    if (Math.abs(v) >= 10) return v.toFixed(1);
+    return v.toPrecision(2);
+  }
+
+  // --- Navigation: walk and look -----------------------------------------------------
+  const keys = new Set();
+  let speed = 1;       // model units per second, from the model's size
+  let drawPending = false, lastTime = 0, stillSince = 0, readoutDone = false;
+
+  function requestDraw() {
+    if (drawPending) return;
+    drawPending = true;
+    requestAnimationFrame(frame);
+  }
+
+  function frame(time) {
+    drawPending = false;
+    const dt = lastTime ? Math.min(0.1, (time - lastTime) / 1000) : 0;
+    lastTime = time;
+    if (keys.size) {
+      move(dt);
+      stillSince = time;
+      readoutDone = false;
+    }
+    resize();
+    renderer.render(scene, camera);
+    if (body.dataset.state === 'loading') body.dataset.state = 'ready';
+    if (keys.size) requestDraw();
+    else {
+      lastTime = 0;
+      if (!readoutDone) scheduleReadout();
+    }
+  }
+
+  function move(dt) {
+    const fast = keys.has('Shift') ? 4 : 1;
+    const step = speed * fast * dt;
+    const forward = new THREE.Vector3(-Math.sin(camera.rotation.y), 0, -Math.cos(camera.rotation.y));
+    const right = new THREE.Vector3(-forward.z, 0, forward.x);
+    const d = new THREE.Vector3();
+    if (keys.has('w') || keys.has('ArrowUp')) d.add(forward);
+    if (keys.has('s') || keys.has('ArrowDown')) d.sub(forward);
+    if (keys.has('d') || keys.has('ArrowRight')) d.add(right);
+    if (keys.has('a') || keys.has('ArrowLeft')) d.sub(right);
+    if (keys.has('e') || keys.has('PageUp')) d.y += 1;
+    if (keys.has('q') || keys.has('PageDown')) d.y -= 1;
+    if (d.lengthSq() > 0) camera.position.addScaledVector(d.normalize(), step);
+  }
+
+  function resize() {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) ||
+        canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
+      renderer.setSize(w, h, false);
+      camera.aspect = w / Math.max(1, h);
+      camera.updateProjectionMatrix();
+    }
+  }
+
+  const movementKeys = ['w', 'a', 's', 'd', 'q', 'e', 'ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight',
+                        'PageUp', 'PageDown', 'Shift'];
+  window.addEventListener('keydown', function (event) {
+    if (event.target.tagName === 'INPUT' || event.target.tagName === 'SELECT') return;
+    const key = event.key.length === 1 ? event.key.toLowerCase() : event.key;
+    if (movementKeys.indexOf(key) >= 0) {
+      keys.add(key);
+      event.preventDefault();
+      requestDraw();
+    } else if (key === 'f') {
+      setMode(state.mode === 'false' ? 'colour' : 'false');
+    } else if (key === 'Home') {
+      showViewpoint(viewpoints.length ? viewpoints[0].name : '');
+    } else if (key >= '1' && key <= '9' && viewpoints[Number(key) - 1]) {
+      showViewpoint(viewpoints[Number(key) - 1].name);
+    } else if (key === '+' || key === '=') {
+      setExposure(state.ev + 0.5);
+    } else if (key === '-') {
+      setExposure(state.ev - 0.5);
+    }
+  });
+  window.addEventListener('keyup', function (event) {
+    keys.delete(event.key.length === 1 ? event.key.toLowerCase() : event.key);
+    if (event.key === 'Shift') keys.delete('Shift');
+  });
+  window.addEventListener('blur', function () { keys.clear(); });
+
+  // Dragging looks around; the wheel walks forward and back.
+  let drag = null;
+  canvas.addEventListener('pointerdown', function (event) {
+    drag = {x: event.clientX, y: event.clientY};
+    canvas.setPointerCapture(event.pointerId);
+  });
+  canvas.addEventListener('pointermove', function (event) {
+    if (!drag) return;
+    const scale = camera.fov * Math.PI / 180 / Math.max(1, canvas.clientHeight);
+    camera.rotation.y += (event.clientX - drag.x) * scale;
+    camera.rotation.x = Math.max(-1.55, Math.min(1.55, camera.rotation.x + (event.clientY - drag.y) * scale));
+    drag = {x: event.clientX, y: event.clientY};
+    readoutDone = false;
+    requestDraw();
+  });
+  canvas.addEventListener('pointerup', function () { drag = null; });
+  canvas.addEventListener('wheel', function (event) {
+    event.preventDefault();
+    const forward = new THREE.Vector3();
+    camera.getWorldDirection(forward);
+    camera.position.addScaledVector(forward, -Math.sign(event.deltaY) * speed * 0.25);
+    readoutDone = false;
+    requestDraw();
+  }, {passive: false});
+  window.addEventListener('resize', requestDraw);
+
+  // --- Read-out: the values under the cross-hair, once the view is still ----------------
+  const raycaster = new THREE.Raycaster();
+  let readoutTimer = 0;
+
+  function scheduleReadout() {
+    clearTimeout(readoutTimer);
+    readoutTimer = setTimeout(updateReadout, 150);
+  }
+
+  function updateReadout() {
+    readoutDone = true;
+    raycaster.setFromCamera(new THREE.Vector2(0, 0), camera);
+    raycaster.near = camera.near;
+    const hit = raycaster.intersectObjects(meshes, false)[0];
+    if (!hit || !hit.face) {
+      readout.textContent = 'Cross-hair: nothing';
+      return;
+    }
+    const geometry = hit.object.geometry;
+    const a = hit.face.a, b = hit.face.b, c = hit.face.c;
+    const p = geometry.attributes.position;
+    const corner = function (i) { return new THREE.Vector3().fromBufferAttribute(p, i).applyMatrix4(hit.object.matrixWorld); };
+    const weights = new THREE.Vector3();
+    THREE.Triangle.getBarycoord(hit.point, corner(a), corner(b), corner(c), weights);
+    const attributes = geometry.attributes;
+    const value = function (attribute) {
+      if (!attribute) return NaN;
+      const v = attribute.array, n = attribute.itemSize;
+      const at = function (i) {
+        if (n === 1) return v[i];
+        return 0.2126 * v[n * i] + 0.7152 * v[n * i + 1] + 0.0722 * v[n * i + 2];
+      };
+      return weights.x * at(a) + weights.y * at(b) + weights.z * at(c);
+    };
+    const parts = ['Distance ' + hit.distance.toFixed(2) + ' ' + config.length_unit];
+    const luminance = attributes._luminance ? value(attributes._luminance) : value(attributes._radiosity) / Math.PI;
+    if (!isNaN(luminance)) parts.push('luminance ' + formatValue(luminance) + ' ' + config.luminance_unit);
+    if (attributes._illuminance) parts.push('illuminance ' + formatValue(value(attributes._illuminance)) + ' lx');
+    else if (attributes._radiosity) parts.push('radiosity ' + formatValue(value(attributes._radiosity)) + ' W/m\u00b2');
+    parts.push('(' + hit.object.name + ')');
+    readout.textContent = parts.join(', ');
+  }
+
+  // --- Viewpoints --------------------------------------------------------------------
+  function showViewpoint(name) {
+    const v = viewpoints.find(function (p) { return p.name === name; });
+    if (v) {
+      camera.position.copy(v.position);
+      const direction = new THREE.Vector3(0, 0, -1).applyQuaternion(v.quaternion);
+      camera.rotation.set(Math.asin(Math.max(-1, Math.min(1, direction.y))), Math.atan2(-direction.x, -direction.z), 0);
+      camera.fov = v.fov;
+    } else {
+      // No viewpoint in the file: from outside, looking at the middle.
+      const centre = bounds.getCenter(new THREE.Vector3());
+      const size = bounds.getSize(new THREE.Vector3()).length();
+      camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.4, 0.9).multiplyScalar(size));
+      const d = centre.clone().sub(camera.position).normalize();
+      camera.rotation.set(Math.asin(d.y), Math.atan2(-d.x, -d.z), 0);
+      camera.fov = 50;
+    }
+    camera.updateProjectionMatrix();
+    state.view = v ? v.name : '';
+    body.dataset.view = state.view;
+    document.getElementById('views').value = state.view;
+    readoutDone = false;
+    requestDraw();
+  }
+
+  function setMode(mode) {
+    state.mode = mode;
+    paint();
+  }
+
+  function setExposure(ev) {
+    state.ev = Math.max(-8, Math.min(8, ev));
+    document.getElementById('ev').value = state.ev;
+    paint();
+  }
+
+  function hashOptions() {
+    const options = {};
+    window.location.hash.replace(/^#/, '').split('&').forEach(function (pair) {
+      const at = pair.indexOf('=');
+      if (at > 0) options[decodeURIComponent(pair.slice(0, at))] = decodeURIComponent(pair.slice(at + 1));
+    });
+    return options;
+  }
+
+  function start(gltf) {
+    const root = gltf.scene;
+    scene.add(root);
+    root.updateMatrixWorld(true);
+    collectLayers(root);
+    if (!meshes.length) throw new Error('the file holds no meshes');
+    meshes.forEach(function (m) { bounds.expandByObject(m); });
+    const size = bounds.getSize(new THREE.Vector3()).length();
+    speed = Math.min(1.4, size / 8);  // at most a walking pace in a building
+    camera.near = Math.max(1e-4, size / 5000);
+    camera.far = size * 20;
+    root.traverse(function (object) {
+      if (!object.isCamera) return;
+      viewpoints.push({
+        name: object.name || ('view' + (viewpoints.length + 1)),
+        position: object.getWorldPosition(new THREE.Vector3()),
+        quaternion: object.getWorldQuaternion(new THREE.Quaternion()),
+        fov: object.fov || 60,
+      });
+    });
+    const select = document.getElementById('views');
+    viewpoints.forEach(function (v, k) {
+      const option = document.createElement('option');
+      option.value = v.name;
+      option.textContent = (k < 9 ? (k + 1) + ': ' : '') + v.name;
+      select.appendChild(option);
+    });
+    if (!viewpoints.length) select.hidden = true;
+    select.addEventListener('change', function () { showViewpoint(select.value); canvas.focus(); });
+    document.getElementById('mode').addEventListener('click', function () {
+      setMode(state.mode === 'false' ? 'colour' : 'false');
+    });
+    document.getElementById('ev').addEventListener('input', function (event) { setExposure(Number(event.target.value)); });
+    document.getElementById('top').addEventListener('change', function (event) {
+      const top = Number(event.target.value);
+      if (top > 0 && isFinite(top)) state.top = top;
+      paint();
+    });
+
+    state.top = config.top > 0 ? config.top : automaticTop();
+    const options = hashOptions();
+    if (options.top !== undefined && Number(options.top) > 0) state.top = Number(options.top);
+    if (options.ev !== undefined && isFinite(Number(options.ev))) state.ev = Number(options.ev);
+    document.getElementById('ev').value = state.ev;
+    if (options.mode === 'false') state.mode = 'false';
+    showViewpoint(options.view !== undefined ? options.view : (viewpoints.length ? viewpoints[0].name : ''));
+    paint();
+  }
+
+  body.dataset.state = 'loading';
+  try {
+    new THREE.GLTFLoader().parse(modelBytes(), '', function (gltf) {
+      try {
+        start(gltf);
+      } catch (error) {
+        console.error(error);
+        fail('The model could not be shown: ' + error.message);
+      }
+    }, function (error) {
+      console.error(error);
+      fail('The model could not be read: ' + (error && error.message ? error.message : error));
+    });
+  } catch (error) {
+    console.error(error);
+    fail('The model could not be read: ' + error.message);
+  }
+})();

@@ -1,0 +1,241 @@
+// `dynrad view`: the walk-through page. ViewCommand checks what the command writes and
+// refuses; BrowserView opens the page in headless Chromium (Debian's chromium, software
+// WebGL through SwiftShader) and looks at the picture it draws.
+#include "mesh/read_glb.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace dynrad {
+namespace {
+
+// An 8 x 3 x 2.7 m room, its faces towards the inside, lit by an emitting panel under
+// the ceiling near its x = 0 end; a camera in the middle of the y = 0 side looks at the
+// far wall (y = 3), so the end with the light is on the picture's left.
+std::string write_room(const test::TempDir& dir) {
+  dir.write("room.obj", R"(v 0 0 0
+v 8 0 0
+v 8 3 0
+v 0 3 0
+v 0 0 2.7
+v 8 0 2.7
+v 8 3 2.7
+v 0 3 2.7
+f 1 2 3 4
+f 5 8 7 6
+f 1 5 6 2
+f 2 6 7 3
+f 3 7 8 4
+f 4 8 5 1
+)");
+  dir.write("lamp.obj", R"(v 0.6 1.2 2.65
+v 1.2 1.2 2.65
+v 1.2 1.8 2.65
+v 0.6 1.8 2.65
+f 1 4 3 2
+)");
+  return dir.write("room.json", R"({
+  "meshes": [{"file": "room.obj", "material": "plaster"}, {"file": "lamp.obj", "material": "lamp"}],
+  "materials": {"plaster": {"reflectance": [0.7, 0.7, 0.7]}, "lamp": {"reflectance": 0, "emission": [300, 300, 300]}},
+  "cameras": [{"name": "wall", "position": [4, 0.3, 1.35], "look_at": [4, 3, 1.35], "fov": 60,
+               "width": 800, "height": 600}]
+})");
+}
+
+// Solves the room into room.glb (and the declared camera's own pictures beside it).
+void solve_room(const test::TempDir& dir) {
+  const auto r = test::run_dynrad("solve '" + write_room(dir) + "' -o '" + dir.path("room.glb") + "' --quality draft");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
+  test::TempDir dir;
+  solve_room(dir);
+  // The viewer opens at the view that shows the most lit surface; the declared camera
+  // follows it.
+  const GlbSummary glb = read_glb_summary(dir.path("room.glb"));
+  ASSERT_GE(glb.cameras.size(), 2u);
+  EXPECT_NE(std::find(glb.cameras.begin(), glb.cameras.end(), "wall"), glb.cameras.end());
+  EXPECT_TRUE(glb.colours);
+  EXPECT_TRUE(glb.scalars.empty());  // emission in watts: radiometric, no _LUMINANCE
+
+  const auto r = test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") +
+                                  "' --title 'Room <8 m> & co'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string html = test::read_text(dir.path("room.html"));
+  // The .glb, byte for byte, as base64 (checked by its length: 4 characters per 3 bytes).
+  const std::string glb_bytes = test::read_text(dir.path("room.glb"));
+  const std::string start = "id=\"dynrad-model\">";
+  const std::size_t from = html.find(start) + start.size(), to = html.find("</script>", from);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(to - from, (glb_bytes.size() + 2) / 3 * 4);
+  EXPECT_EQ(html.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=", from), to);
+  // three.js r111 and its GLTFLoader are inlined, nothing is fetched.
+  EXPECT_EQ(count(html, "REVISION=\"111\""), 1u);
+  EXPECT_EQ(count(html, "exports.GLTFLoader = GLTFLoader"), 1u);
+  EXPECT_EQ(count(html, "src=\"http"), 0u);
+  EXPECT_EQ(count(html, "<script src"), 0u);
+  // The title is escaped where it is shown; the configuration names the units.
+  EXPECT_EQ(count(html, "Room &lt;8 m&gt; &amp; co"), 2u);
+  EXPECT_EQ(count(html, "W/(m\xc2\xb2 sr)"), 1u);
+}
+
+TEST(ViewCommand, RefusesWhatABrowserCouldNotShowAndWritesNothing) {
+  test::TempDir dir;
+  auto refused = [&](const std::string& input, const std::string& output, const std::string& expected) {
+    const auto r = test::run_dynrad("view '" + input + "' -o '" + output + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    EXPECT_FALSE(test::file_exists(output)) << output;
+  };
+  const std::string page = dir.path("v.html");
+  refused(dir.path("missing.glb"), page, "missing.glb");
+  refused(dir.write("room.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), page, "is not binary glTF");
+  refused(dir.write("short.glb", std::string("glTF\x02\0\0\0", 8) + std::string(40, '\0')), page, "cannot be read as glTF");
+  // A real binary glTF whose vertices carry no colour (assimp's test box).
+  refused("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", page, "no vertex colours");
+
+  solve_room(dir);
+  const std::string glb = test::read_text(dir.path("room.glb"));
+  refused(dir.write("cut.glb", glb.substr(0, glb.size() / 2)), page, "cut.glb");
+  refused(dir.path("room.glb"), dir.path("v.png"), "name it NAME.html");
+  refused(dir.path("room.glb"), dir.path("no/such/dir/v.html"), "v.html");
+  // An existing page is left as it was when the new one is refused.
+  dir.write("old.html", "keep me");
+  const auto r = test::run_dynrad("view '" + dir.path("cut.glb") + "' -o '" + dir.path("old.html") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(test::read_text(dir.path("old.html")), "keep me");
+}
+
+// Headless Chromium on the page at `fragment` (the hash: view, mode), 800 x 600.
+struct PageRun {
+  std::string dom, log;
+  test::Picture picture;
+};
+
+PageRun open_page(const test::TempDir& dir, const std::string& page, const std::string& fragment,
+                  const std::string& name) {
+  const std::string chromium =
+      "chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader --hide-scrollbars "
+      "--no-first-run --user-data-dir='" + dir.path("profile") + "' --window-size=800,600 --virtual-time-budget=30000 ";
+  const std::string url = "'file://" + page + "#" + fragment + "'";
+  PageRun run;
+  const auto dom = test::run_shell(chromium + "--dump-dom " + url + " 2>/dev/null");
+  EXPECT_EQ(dom.exit_code, 0) << dom.output;
+  run.dom = dom.output;
+  const auto shot = test::run_shell(chromium + "--enable-logging=stderr --v=0 --screenshot='" + dir.path(name) + "' " +
+                                    url + " 2>&1");
+  EXPECT_EQ(shot.exit_code, 0) << shot.output;
+  run.log = shot.output;
+  run.picture = test::read_png(dir.path(name));
+  return run;
+}
+
+double mean(const test::Picture& p, int x0, int x1, int y0, int y1, int channel) {
+  double sum = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += channel < 0 ? (p.at(x, y)[0] + p.at(x, y)[1] + p.at(x, y)[2]) / 3.0
+                                                      : p.at(x, y)[channel];
+  return sum / ((x1 - x0) * (y1 - y0));
+}
+
+TEST(BrowserView, PageShowsTheLitModelAsDynradRendersIt) {
+  test::TempDir dir;
+  solve_room(dir);
+  const auto r = test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const PageRun page = open_page(dir, dir.path("room.html"), "view=wall", "page.png");
+  // Loaded, drawn, and no error from any script.
+  EXPECT_NE(page.dom.find("data-state=\"ready\""), std::string::npos) << page.dom.substr(0, 2000);
+  EXPECT_NE(page.dom.find("data-view=\"wall\""), std::string::npos);
+  EXPECT_NE(page.dom.find("data-errors=\"0\""), std::string::npos);
+  EXPECT_EQ(page.log.find("Uncaught"), std::string::npos) << page.log;
+  ASSERT_EQ(page.picture.width, 800) << page.log;
+  ASSERT_EQ(page.picture.height, 600);
+
+  // Not blank: the wall fills the middle of the picture with light, and the end with
+  // the lamp (left) is brighter than the far end (right).
+  const test::Picture& p = page.picture;
+  const double left = mean(p, 40, 240, 250, 480, -1), right = mean(p, 560, 760, 250, 480, -1);
+  EXPECT_GT(left, 60.0);
+  EXPECT_GT(left, 1.3 * right) << "left " << left << ", right " << right;
+
+  // The same camera rendered by dynrad itself (room_view_wall.png, 800 x 600, the same
+  // exposure and sRGB curve): the page's pixels match away from its overlays (the panel
+  // top left, the read-out at the bottom, the cross-hair in the middle).
+  const test::Picture own = test::read_png(dir.path("room_view_wall.png"));
+  ASSERT_EQ(own.width, 800);
+  double difference = 0;
+  int pixels = 0;
+  for (int y = 0; y < 560; ++y)
+    for (int x = 0; x < 800; ++x) {
+      const bool panel = x < 400 && y < 190, cross = std::abs(x - 400) < 12 && std::abs(y - 300) < 12;
+      if (panel || cross) continue;
+      for (int c = 0; c < 3; ++c) difference += std::abs(p.at(x, y)[c] - own.at(x, y)[c]);
+      pixels += 3;
+    }
+  std::printf("page against dynrad's own picture: %.2f of 255 per channel on average\n", difference / pixels);
+  EXPECT_LT(difference / pixels, 6.0) << "mean difference per channel, of 255";
+}
+
+// Where a colour lies on the false-colour scale, t in [0, 1]: the nearest of 501 colours
+// along the report's scale (plugin/cli/grid_picture.cpp's stops).
+double scale_position(const std::uint8_t* rgb) {
+  static const double stops[6][3] = {{0.05, 0.05, 0.45}, {0.0, 0.35, 1.0}, {0.0, 0.85, 0.9},
+                                     {0.2, 0.8, 0.2},    {1.0, 0.9, 0.0},  {0.9, 0.1, 0.1}};
+  double best = 1e300, best_t = 0;
+  for (int k = 0; k <= 500; ++k) {
+    const double t = k / 500.0, u = std::min(4.999999, t * 5);
+    const int s = static_cast<int>(u);
+    double d = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double v = 255 * (stops[s][c] * (1 - (u - s)) + stops[s + 1][c] * (u - s));
+      d += (v - rgb[c]) * (v - rgb[c]);
+    }
+    if (d < best) {
+      best = d;
+      best_t = t;
+    }
+  }
+  return best_t;
+}
+
+TEST(BrowserView, FalseColourRisesTowardsTheLight) {
+  test::TempDir dir;
+  solve_room(dir);
+  ASSERT_EQ(test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") + "' --top 2").exit_code,
+            0);
+  const PageRun page = open_page(dir, dir.path("room.html"), "view=wall&mode=false", "false.png");
+  EXPECT_NE(page.dom.find("data-state=\"ready\""), std::string::npos);
+  EXPECT_NE(page.dom.find("data-errors=\"0\""), std::string::npos);
+  ASSERT_EQ(page.picture.width, 800) << page.log;
+  // Along a row of the wall below the panel and the legend, the colours lie on the
+  // report's scale (within a few levels of 255) and climb it towards the lamp's end.
+  const test::Picture& p = page.picture;
+  auto position = [&](int x0) {
+    double sum = 0;
+    for (int y = 420; y < 540; ++y)
+      for (int x = x0; x < x0 + 40; ++x) sum += scale_position(p.at(x, y));
+    return sum / (120 * 40);
+  };
+  const double t_left = position(40), t_middle = position(380), t_right = position(720);
+  EXPECT_GT(t_left, t_middle + 0.05) << t_left << " " << t_middle << " " << t_right;
+  EXPECT_GT(t_middle, t_right + 0.02) << t_left << " " << t_middle << " " << t_right;
+
+}
+
+}  // namespace
+}  // namespace dynrad
