@@ -32,11 +32,12 @@ ci_runs() {
     ies) echo 110000 ;;  # the photometry readers, from memory: about 10 s each (2026-12)
     ldt) echo 60000 ;;
     gltf) echo 4000 ;;  # assimp's glTF reader, text glTF with embedded buffers: about 80-150 a second (2026-12)
+    glb) echo 300000 ;;  # the .glb check of `dynrad view` (tinygltf): 400,000 took 22 s (2026-12)
     *) echo 60000 ;;
   esac
 }
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene gltf ies ldt)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene gltf glb ies ldt)
 
 scripts/install-deps.sh
 scripts/configure-reliability.sh

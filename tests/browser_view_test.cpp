@@ -4,6 +4,8 @@
 #include "mesh/read_glb.h"
 #include "test_support.h"
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -213,28 +215,44 @@ double scale_position(const std::uint8_t* rgb) {
   return best_t;
 }
 
-TEST(BrowserView, FalseColourRisesTowardsTheLight) {
+TEST(BrowserView, FalseColourRisesTowardsTheLightAsInDynradsOwnPicture) {
   test::TempDir dir;
-  solve_room(dir);
-  ASSERT_EQ(test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") + "' --top 2").exit_code,
-            0);
-  const PageRun page = open_page(dir, dir.path("room.html"), "view=wall&mode=false", "false.png");
+  const auto solved = test::run_dynrad("solve '" + write_room(dir) + "' -o '" + dir.path("room.glb") +
+                                       "' --quality draft --report '" + dir.path("report.json") + "'");
+  ASSERT_EQ(solved.exit_code, 0) << solved.output;
+  // The scale's top of dynrad's own false-colour picture of the camera, given to the page.
+  const nlohmann::json report = nlohmann::json::parse(test::read_text(dir.path("report.json")));
+  ASSERT_EQ(report["views"].size(), 1u);
+  const double top = report["views"][0]["luminance_legend_top"];
+  ASSERT_EQ(test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") + "'").exit_code, 0);
+  const PageRun page =
+      open_page(dir, dir.path("room.html"), "view=wall&mode=false&top=" + std::to_string(top), "false.png");
   EXPECT_NE(page.dom.find("data-state=\"ready\""), std::string::npos);
   EXPECT_NE(page.dom.find("data-errors=\"0\""), std::string::npos);
   ASSERT_EQ(page.picture.width, 800) << page.log;
-  // Along a row of the wall below the panel and the legend, the colours lie on the
-  // report's scale (within a few levels of 255) and climb it towards the lamp's end.
+
+  // Along a band of the wall below the panel and the legend, the colours lie on the
+  // report's scale and climb it towards the lamp's end.
   const test::Picture& p = page.picture;
-  auto position = [&](int x0) {
+  auto position = [&](const test::Picture& picture, int x0, int dx, int dy) {
     double sum = 0;
     for (int y = 420; y < 540; ++y)
-      for (int x = x0; x < x0 + 40; ++x) sum += scale_position(p.at(x, y));
+      for (int x = x0; x < x0 + 40; ++x) sum += scale_position(picture.at(x + dx, y + dy));
     return sum / (120 * 40);
   };
-  const double t_left = position(40), t_middle = position(380), t_right = position(720);
-  EXPECT_GT(t_left, t_middle + 0.05) << t_left << " " << t_middle << " " << t_right;
-  EXPECT_GT(t_middle, t_right + 0.02) << t_left << " " << t_middle << " " << t_right;
+  const double t_left = position(p, 40, 0, 0), t_middle = position(p, 380, 0, 0), t_right = position(p, 720, 0, 0);
+  std::printf("false colour along the wall: t = %.3f, %.3f, %.3f (top %g)\n", t_left, t_middle, t_right, top);
+  EXPECT_GT(t_left, t_middle + 0.05);
+  EXPECT_GT(t_middle, t_right + 0.02);
 
+  // dynrad's own false-colour picture of the camera (its 800 x 600 view starts 12 pixels
+  // in and 56 down, below its title) places the same points at the same t.
+  const test::Picture own = test::read_png(dir.path("room_view_wall_luminance.png"));
+  ASSERT_GT(own.width, 800);
+  for (int x0 : {40, 380, 720}) {
+    const double t_page = position(p, x0, 0, 0), t_own = position(own, x0, 12, 56);
+    EXPECT_NEAR(t_page, t_own, 0.01) << "at x = " << x0;
+  }
 }
 
 }  // namespace

@@ -42,7 +42,7 @@
 
   // Colour attributes are shared by every primitive (one buffer holds each vertex once),
   // so each is kept once here with its linear values and the values read out with it.
-  const layers = [];  // {colour, linear, luminance, illuminance, radiosity}
+  const layers = [];  // {colour, linear, luminance, radiosity}
   let meshes = [];
   let viewpoints = [];  // {name, position, quaternion, fov}
   let bounds = new THREE.Box3();
@@ -55,15 +55,50 @@
       const attributes = object.geometry.attributes;
       if (!attributes.color || seen.has(attributes.color)) return;
       seen.add(attributes.color);
+      // Attributes may be interleaved (files from elsewhere), so values go through
+      // getX/setXYZ rather than the arrays.
+      const colour = attributes.color;
+      const linear = new Float32Array(3 * colour.count);
+      for (let i = 0; i < colour.count; ++i) {
+        linear[3 * i] = colour.getX(i);
+        linear[3 * i + 1] = colour.getY(i);
+        linear[3 * i + 2] = colour.getZ(i);
+      }
       layers.push({
-        colour: attributes.color,
-        linear: Float32Array.from(attributes.color.array),
+        colour: colour,
+        linear: linear,
         luminance: attributes._luminance || null,
-        illuminance: attributes._illuminance || null,
         radiosity: attributes._radiosity || null,
-        itemSize: attributes.color.itemSize,
+        // False colour: the luminance's place on the scale as a texture coordinate into
+        // the scale, so that the value (not the colour) is interpolated across each
+        // triangle, as the report's pictures map each pixel.
+        scale: new THREE.BufferAttribute(new Float32Array(2 * colour.count), 2),
       });
     });
+    for (const mesh of meshes) {
+      const geometry = mesh.geometry;
+      const layer = layers.find(function (l) { return l.colour === geometry.attributes.color; });
+      mesh.userData.dynrad = {
+        trueMaterial: mesh.material,
+        falseMaterial: new THREE.MeshBasicMaterial({map: scaleTexture(), side: mesh.material.side}),
+        ownUv: geometry.attributes.uv || null,
+        scaleUv: layer ? layer.scale : null,
+      };
+    }
+  }
+
+  let texture = null;
+  function scaleTexture() {
+    if (texture) return texture;
+    const n = 256, data = new Uint8Array(3 * n), c = [0, 0, 0];
+    for (let k = 0; k < n; ++k) {
+      falseColour(k / (n - 1), c);
+      for (let j = 0; j < 3; ++j) data[3 * k + j] = Math.round(255 * c[j]);
+    }
+    texture = new THREE.DataTexture(data, n, 1, THREE.RGBFormat);
+    texture.magFilter = texture.minFilter = THREE.LinearFilter;
+    texture.needsUpdate = true;
+    return texture;
   }
 
   // --- Colour: exposure and sRGB, or false colour ------------------------------------
@@ -84,37 +119,52 @@
     return out;
   }
 
+  // The luminance-weighted sum of an RGB attribute's vertex i (Rec. 709 weights, as the
+  // solver's).
+  function rec709(attribute, i) {
+    return 0.2126 * attribute.getX(i) + 0.7152 * attribute.getY(i) + 0.0722 * attribute.getZ(i);
+  }
+
   // Luminance of vertex i of a layer: the file's _LUMINANCE (cd/m^2), else B / pi from
   // its _RADIOSITY.
   function luminanceAt(layer, i) {
-    if (layer.luminance) return layer.luminance.array[i];
-    if (layer.radiosity) {
-      const r = layer.radiosity.array;
-      return (0.2126 * r[3 * i] + 0.7152 * r[3 * i + 1] + 0.0722 * r[3 * i + 2]) / Math.PI;
-    }
+    if (layer.luminance) return layer.luminance.getX(i);
+    if (layer.radiosity) return rec709(layer.radiosity, i) / Math.PI;
     return NaN;
   }
 
   function paint() {
     const gain = Math.pow(2, state.ev);
     const rgb = [0, 0, 0];
+    const falseMode = state.mode === 'false';
     for (const layer of layers) {
-      const out = layer.colour.array, linear = layer.linear, size = layer.itemSize;
-      const count = out.length / size;
-      for (let i = 0; i < count; ++i) {
-        const o = i * size;
-        if (state.mode === 'false') {
+      if (falseMode) {
+        // Texel centres of the 256-texel scale: 0.5 / 256 at 0, 255.5 / 256 at the top.
+        for (let i = 0; i < layer.colour.count; ++i) {
           const l = luminanceAt(layer, i);
-          if (isNaN(l)) rgb[0] = rgb[1] = rgb[2] = 0.3;
-          else falseColour(l / state.top, rgb);
-          out[o] = rgb[0]; out[o + 1] = rgb[1]; out[o + 2] = rgb[2];
-        } else {
-          out[o] = srgb(gain * linear[o]);
-          out[o + 1] = srgb(gain * linear[o + 1]);
-          out[o + 2] = srgb(gain * linear[o + 2]);
+          const t = isNaN(l) ? 0 : Math.min(1, Math.max(0, l / state.top));
+          layer.scale.setXY(i, (0.5 + 255 * t) / 256, 0.5);
         }
+        layer.scale.needsUpdate = true;
+        continue;
       }
-      layer.colour.needsUpdate = true;
+      const colour = layer.colour, linear = layer.linear;
+      for (let i = 0; i < colour.count; ++i) {
+        rgb[0] = srgb(gain * linear[3 * i]);
+        rgb[1] = srgb(gain * linear[3 * i + 1]);
+        rgb[2] = srgb(gain * linear[3 * i + 2]);
+        colour.setXYZ(i, rgb[0], rgb[1], rgb[2]);
+      }
+      if (colour.isInterleavedBufferAttribute) colour.data.needsUpdate = true;
+      else colour.needsUpdate = true;
+    }
+    for (const mesh of meshes) {
+      const own = mesh.userData.dynrad;
+      if (!own.scaleUv) continue;  // no colours: left as the file has it
+      mesh.material = falseMode ? own.falseMaterial : own.trueMaterial;
+      if (falseMode) mesh.geometry.setAttribute('uv', own.scaleUv);
+      else if (own.ownUv) mesh.geometry.setAttribute('uv', own.ownUv);
+      else mesh.geometry.deleteAttribute('uv');
     }
     document.getElementById('legend').hidden = state.mode !== 'false';
     document.getElementById('mode').textContent = state.mode === 'false' ? 'True colour (F)' : 'False colour (F)';
@@ -149,8 +199,7 @@
   function automaticTop() {
     const values = [];
     for (const layer of layers) {
-      const count = layer.colour.array.length / layer.itemSize;
-      for (let i = 0; i < count; ++i) {
+      for (let i = 0; i < layer.colour.count; ++i) {
         const l = luminanceAt(layer, i);
         if (l > 0) values.push(l);
       }
@@ -313,11 +362,7 @@
     const attributes = geometry.attributes;
     const value = function (attribute) {
       if (!attribute) return NaN;
-      const v = attribute.array, n = attribute.itemSize;
-      const at = function (i) {
-        if (n === 1) return v[i];
-        return 0.2126 * v[n * i] + 0.7152 * v[n * i + 1] + 0.0722 * v[n * i + 2];
-      };
+      const at = function (i) { return attribute.itemSize === 1 ? attribute.getX(i) : rec709(attribute, i); };
       return weights.x * at(a) + weights.y * at(b) + weights.z * at(c);
     };
     const parts = ['Distance ' + hit.distance.toFixed(2) + ' ' + config.length_unit];
