@@ -27,7 +27,7 @@ root=$(pwd)
 # into Blender's own Python, where no ASan runtime is loaded) are not built here; they
 # run in the release suite. The solver and import code they call run sanitized through
 # dynrad_tests.
-hosts='capi_test|blender_addon|blender_gltf|BrowserView\.'
+hosts='capi_test|blender_addon|blender_gltf|browser_walk|BrowserView\.'
 exclude=(-E "$hosts")
 if [ "${1:-}" = "--ci" ]; then
   exclude=(-E "$hosts|Physics\.(ClosedRoomReflectsAllPowerUntilAbsorbed|NoLightThroughAWallSharedByTwoRooms|CornellFloorIsRedderNextToTheRedWall)/|Physics\.EnergyIsConservedAfterEveryShot/adaptive|Simplify\.SolveAgreesWithAndWithoutSimplification|Culling\.NegligibleReceiversCostAtMostTheirStatedShare|Junctions\.FloorByTheWallsIsLitAsIfItEndedThere/|BoxOnTheFloor\.|Storey\.|HostileInput\.HundredThousandMaterialsLoadInSeconds|ErrorEstimate\.BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality|Junctions\.HiddenPartsTakeNoLightAndTheBalanceHolds/adaptive|Luminaire\.PlateCastsAnUmbraWithNoDirectLight|ShapedSenders\.CloserToAFineSolutionThanEvenSenders|Views\.PreviewInsideAClosedBuildingIsNotBlack|Daylight\.GlazingScalesTheWholeSolveAndTheBalanceHolds|AssimpImport\.IfcHouseHasItsElementsStandsUpAndLights")

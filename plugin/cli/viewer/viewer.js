@@ -8,7 +8,11 @@
 //   data-state   "loading", "ready" (the first frame is drawn) or "error"
 //   data-errors  the number of errors reported (script errors, console.error)
 //   data-view    the viewpoint shown last
-// The URL's hash may choose how the page opens: #view=NAME&mode=false&ev=-1&top=200.
+//   data-camera  x,y,z,heading,pitch of the camera after the last frame drawn
+//   data-mode    "colour" or "false"; data-ev the exposure's offset in stops
+// The URL's hash may choose how the page opens: #view=NAME&mode=false&ev=-1&top=200, or
+// #camera=x,y,z,heading,pitch for a place; the page keeps its hash up to date with the
+// latter form whenever the view comes to rest, so the address can be bookmarked or sent.
 (function () {
   'use strict';
 
@@ -230,7 +234,11 @@
   // --- Navigation: walk and look -----------------------------------------------------
   const keys = new Set();
   let speed = 1;       // model units per second, from the model's size
-  let drawPending = false, lastTime = 0, stillSince = 0, readoutDone = false;
+  let drawPending = false, readoutDone = false;
+  // Movement follows the time the keys are held, not the frames drawn: each step goes
+  // from the last one to now, and releasing a key takes the last step, so a slow
+  // machine walks as far, in fewer frames.
+  let moveClock = 0;
 
   function requestDraw() {
     if (drawPending) return;
@@ -238,23 +246,21 @@
     requestAnimationFrame(frame);
   }
 
-  function frame(time) {
+  function advance() {
+    const now = performance.now();
+    if (keys.size && moveClock) move(Math.min(2, (now - moveClock) / 1000));  // no leap after a stall
+    moveClock = now;
+  }
+
+  function frame() {
     drawPending = false;
-    const dt = lastTime ? Math.min(0.1, (time - lastTime) / 1000) : 0;
-    lastTime = time;
-    if (keys.size) {
-      move(dt);
-      stillSince = time;
-      readoutDone = false;
-    }
+    if (keys.size) advance();
     resize();
     renderer.render(scene, camera);
+    body.dataset.mode = state.mode;
+    body.dataset.ev = String(state.ev);
     if (body.dataset.state === 'loading') body.dataset.state = 'ready';
-    if (keys.size) requestDraw();
-    else {
-      lastTime = 0;
-      if (!readoutDone) scheduleReadout();
-    }
+    if (!keys.size && !readoutDone) scheduleReadout();
   }
 
   function move(dt) {
@@ -270,6 +276,14 @@
     if (keys.has('e') || keys.has('PageUp')) d.y += 1;
     if (keys.has('q') || keys.has('PageDown')) d.y -= 1;
     if (d.lengthSq() > 0) camera.position.addScaledVector(d.normalize(), step);
+    cameraMoved();
+  }
+
+  // Called whenever the camera changes: the page's state on <body> says where it is.
+  function cameraMoved() {
+    body.dataset.camera = cameraText();
+    readoutDone = false;
+    requestDraw();
   }
 
   function resize() {
@@ -288,6 +302,7 @@
     if (event.target.tagName === 'INPUT' || event.target.tagName === 'SELECT') return;
     const key = event.key.length === 1 ? event.key.toLowerCase() : event.key;
     if (movementKeys.indexOf(key) >= 0) {
+      advance();
       keys.add(key);
       event.preventDefault();
       requestDraw();
@@ -304,10 +319,11 @@
     }
   });
   window.addEventListener('keyup', function (event) {
+    advance();
     keys.delete(event.key.length === 1 ? event.key.toLowerCase() : event.key);
     if (event.key === 'Shift') keys.delete('Shift');
   });
-  window.addEventListener('blur', function () { keys.clear(); });
+  window.addEventListener('blur', function () { advance(); keys.clear(); });
 
   // Dragging looks around; the wheel walks forward and back.
   let drag = null;
@@ -321,8 +337,7 @@
     camera.rotation.y += (event.clientX - drag.x) * scale;
     camera.rotation.x = Math.max(-1.55, Math.min(1.55, camera.rotation.x + (event.clientY - drag.y) * scale));
     drag = {x: event.clientX, y: event.clientY};
-    readoutDone = false;
-    requestDraw();
+    cameraMoved();
   });
   canvas.addEventListener('pointerup', function () { drag = null; });
   canvas.addEventListener('wheel', function (event) {
@@ -330,8 +345,7 @@
     const forward = new THREE.Vector3();
     camera.getWorldDirection(forward);
     camera.position.addScaledVector(forward, -Math.sign(event.deltaY) * speed * 0.25);
-    readoutDone = false;
-    requestDraw();
+    cameraMoved();
   }, {passive: false});
   window.addEventListener('resize', requestDraw);
 
@@ -344,8 +358,30 @@
     readoutTimer = setTimeout(updateReadout, 150);
   }
 
+  // Where the camera is: x, y, z (the file's axes, y up), then its heading and pitch in
+  // degrees; the form #camera= takes.
+  function cameraText() {
+    const p = camera.position;
+    return [p.x, p.y, p.z].map(function (v) { return v.toFixed(3); }).join(',') + ',' +
+           [camera.rotation.y, camera.rotation.x].map(function (v) { return (v * 180 / Math.PI).toFixed(2); }).join(',');
+  }
+
+  // The address of what is shown, so that it can be bookmarked or sent: the page's own
+  // URL with #camera=...&mode=...&ev=...&top=...
+  function updateAddress() {
+    const parts = ['camera=' + cameraText()];
+    if (state.mode === 'false') parts.push('mode=false', 'top=' + state.top);
+    if (state.ev !== 0) parts.push('ev=' + state.ev);
+    try {
+      history.replaceState(null, '', '#' + parts.join('&'));
+    } catch (error) {
+      // Some browsers refuse this for local files; the page works without it.
+    }
+  }
+
   function updateReadout() {
     readoutDone = true;
+    updateAddress();
     raycaster.setFromCamera(new THREE.Vector2(0, 0), camera);
     raycaster.near = camera.near;
     const hit = raycaster.intersectObjects(meshes, false)[0];
@@ -395,8 +431,7 @@
     state.view = v ? v.name : '';
     body.dataset.view = state.view;
     document.getElementById('views').value = state.view;
-    readoutDone = false;
-    requestDraw();
+    cameraMoved();
   }
 
   function setMode(mode) {
@@ -465,6 +500,15 @@
     document.getElementById('ev').value = state.ev;
     if (options.mode === 'false') state.mode = 'false';
     showViewpoint(options.view !== undefined ? options.view : (viewpoints.length ? viewpoints[0].name : ''));
+    const place = (options.camera || '').split(',').map(Number);
+    if (place.length === 5 && place.every(isFinite)) {
+      camera.position.set(place[0], place[1], place[2]);
+      camera.rotation.set(place[4] * Math.PI / 180, place[3] * Math.PI / 180, 0);
+      cameraMoved();
+      state.view = '';
+      body.dataset.view = '';
+      document.getElementById('views').value = '';
+    }
     paint();
   }
 
