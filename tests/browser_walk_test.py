@@ -80,6 +80,7 @@ class Browser:
         self.buffer = b""
         self.next_id = 0
         self.session = None
+        self.console_errors = []  # what the DevTools console would show in red
 
     def send(self, method, params=None, session=True):
         self.next_id += 1
@@ -95,16 +96,29 @@ class Browser:
                 self.buffer += chunk
             raw, self.buffer = self.buffer.split(b"\0", 1)
             reply = json.loads(raw)
+            self.note(reply)
             if reply.get("id") == self.next_id:
                 if "error" in reply:
                     raise RuntimeError(method + ": " + json.dumps(reply["error"]))
                 return reply.get("result", {})
+
+    def note(self, event):
+        method, params = event.get("method"), event.get("params", {})
+        if method == "Runtime.exceptionThrown":
+            self.console_errors.append(params["exceptionDetails"].get("text", "exception"))
+        elif method == "Runtime.consoleAPICalled" and params.get("type") in ("error", "assert"):
+            self.console_errors.append(" ".join(str(a.get("value", a.get("description"))) for a in params["args"]))
+        elif method == "Log.entryAdded" and params["entry"].get("level") == "error":
+            self.console_errors.append(params["entry"].get("text", ""))
 
     def open(self, url):
         target = self.send("Target.createTarget", {"url": url}, session=False)["targetId"]
         self.session = self.send("Target.attachToTarget", {"targetId": target, "flatten": True},
                                  session=False)["sessionId"]
         self.send("Runtime.enable")
+        self.send("Log.enable")
+        # The page was created before the domains were on: load it again to see it all.
+        self.send("Page.reload")
 
     def evaluate(self, expression):
         return self.send("Runtime.evaluate", {"expression": expression, "returnByValue": True})["result"].get("value")
@@ -254,6 +268,7 @@ def main():
               "the address follows the camera")
         address = browser.evaluate("location.href")
         check(browser.body("errors") == "0", "no script error in the walk")
+        check(not browser.console_errors, "nothing in red on the console: %s" % browser.console_errors)
     finally:
         browser.close()
 
@@ -266,6 +281,7 @@ def main():
               all(abs(a - b) < 0.02 for a, b in zip(there[3:], here[3:])),
               "and shows the same place: %s, %s" % (there, here))
         check(again.body("errors") == "0", "no script error")
+        check(not again.console_errors, "nothing in red on the console: %s" % again.console_errors)
     finally:
         again.close()
 
