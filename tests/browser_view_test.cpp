@@ -17,42 +17,15 @@
 namespace dynrad {
 namespace {
 
-// An 8 x 3 x 2.7 m room, its faces towards the inside, lit by an emitting panel under
-// the ceiling near its x = 0 end; a camera in the middle of the y = 0 side looks at the
-// far wall (y = 3), so the end with the light is on the picture's left.
-std::string write_room(const test::TempDir& dir) {
-  dir.write("room.obj", R"(v 0 0 0
-v 8 0 0
-v 8 3 0
-v 0 3 0
-v 0 0 2.7
-v 8 0 2.7
-v 8 3 2.7
-v 0 3 2.7
-f 1 2 3 4
-f 5 8 7 6
-f 1 5 6 2
-f 2 6 7 3
-f 3 7 8 4
-f 4 8 5 1
-)");
-  dir.write("lamp.obj", R"(v 0.6 1.2 2.65
-v 1.2 1.2 2.65
-v 1.2 1.8 2.65
-v 0.6 1.8 2.65
-f 1 4 3 2
-)");
-  return dir.write("room.json", R"({
-  "meshes": [{"file": "room.obj", "material": "plaster"}, {"file": "lamp.obj", "material": "lamp"}],
-  "materials": {"plaster": {"reflectance": [0.7, 0.7, 0.7]}, "lamp": {"reflectance": 0, "emission": [300, 300, 300]}},
-  "cameras": [{"name": "wall", "position": [4, 0.3, 1.35], "look_at": [4, 3, 1.35], "fov": 60,
-               "width": 800, "height": 600}]
-})");
-}
+// tests/data/lamp_room: an 8 x 3 x 2.7 m room, its faces towards the inside, lit by an
+// emitting panel (300 W/m^2) under the ceiling near its x = 0 end; its camera "wall" in
+// the middle of the y = 0 side looks at the far wall (y = 3), so the end with the light is
+// on the picture's left. tests/browser_walk_test.py walks through the same room.
+const std::string kRoom = std::string(DYNRAD_TEST_DATA_DIR) + "/lamp_room/room.json";
 
 // Solves the room into room.glb (and the declared camera's own pictures beside it).
 void solve_room(const test::TempDir& dir) {
-  const auto r = test::run_dynrad("solve '" + write_room(dir) + "' -o '" + dir.path("room.glb") + "' --quality draft");
+  const auto r = test::run_dynrad("solve '" + kRoom + "' -o '" + dir.path("room.glb") + "' --quality draft");
   ASSERT_EQ(r.exit_code, 0) << r.output;
 }
 
@@ -217,7 +190,7 @@ double scale_position(const std::uint8_t* rgb) {
 
 TEST(BrowserView, FalseColourRisesTowardsTheLightAsInDynradsOwnPicture) {
   test::TempDir dir;
-  const auto solved = test::run_dynrad("solve '" + write_room(dir) + "' -o '" + dir.path("room.glb") +
+  const auto solved = test::run_dynrad("solve '" + kRoom + "' -o '" + dir.path("room.glb") +
                                        "' --quality draft --report '" + dir.path("report.json") + "'");
   ASSERT_EQ(solved.exit_code, 0) << solved.output;
   // The scale's top of dynrad's own false-colour picture of the camera, given to the page.

@@ -6,7 +6,11 @@ messages ending in NUL on file descriptors 3 and 4), so nothing beyond Python's 
 library is needed. Keys, drags and the wheel go in as the browser's own input events; the
 page reports where its camera is on <body data-camera="x,y,z,heading,pitch">.
 
-usage: browser_walk_test.py DYNRAD WORK_DIR
+The room is tests/data/lamp_room (as in tests/browser_view_test.cpp): 8 x 3 x 2.7 m, lit
+near its x = 0 end; its camera "wall" stands at (4, 0.3, 1.35) looking along +y, which in
+the glTF's axes (y up) is (4, 1.35, -0.3) looking along -z.
+
+usage: browser_walk_test.py DYNRAD LAMP_ROOM_SCENE WORK_DIR
 """
 import json
 import math
@@ -15,35 +19,6 @@ import shutil
 import subprocess
 import sys
 import time
-
-ROOM_OBJ = """v 0 0 0
-v 8 0 0
-v 8 3 0
-v 0 3 0
-v 0 0 2.7
-v 8 0 2.7
-v 8 3 2.7
-v 0 3 2.7
-f 1 2 3 4
-f 5 8 7 6
-f 1 5 6 2
-f 2 6 7 3
-f 3 7 8 4
-f 4 8 5 1
-"""
-LAMP_OBJ = """v 0.6 1.2 2.65
-v 1.2 1.2 2.65
-v 1.2 1.8 2.65
-v 0.6 1.8 2.65
-f 1 4 3 2
-"""
-SCENE = {
-    "meshes": [{"file": "room.obj", "material": "plaster"}, {"file": "lamp.obj", "material": "lamp"}],
-    "materials": {"plaster": {"reflectance": [0.7, 0.7, 0.7]},
-                  "lamp": {"reflectance": 0, "emission": [300, 300, 300]}},
-    # Looking along +y from the middle of the y = 0 wall; in the glTF (y up) that is -z.
-    "cameras": [{"name": "wall", "position": [4, 0.3, 1.35], "look_at": [4, 3, 1.35], "fov": 60}],
-}
 
 failures = []
 
@@ -185,18 +160,11 @@ def settle(browser):
 
 
 def main():
-    dynrad, work = sys.argv[1], sys.argv[2]
+    dynrad, scene, work = sys.argv[1], sys.argv[2], sys.argv[3]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    with open(os.path.join(work, "room.obj"), "w") as f:
-        f.write(ROOM_OBJ)
-    with open(os.path.join(work, "lamp.obj"), "w") as f:
-        f.write(LAMP_OBJ)
-    with open(os.path.join(work, "room.json"), "w") as f:
-        json.dump(SCENE, f)
     glb, page = os.path.join(work, "room.glb"), os.path.join(work, "room.html")
-    subprocess.run([dynrad, "solve", os.path.join(work, "room.json"), "-o", glb, "--quality", "draft"], check=True,
-                   stdout=subprocess.DEVNULL)
+    subprocess.run([dynrad, "solve", scene, "-o", glb, "--quality", "draft"], check=True, stdout=subprocess.DEVNULL)
     subprocess.run([dynrad, "view", glb, "-o", page], check=True, stdout=subprocess.DEVNULL)
 
     browser = Browser(os.path.join(work, "profile"))
