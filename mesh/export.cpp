@@ -19,7 +19,7 @@ using OutMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 void write_mesh_with_values(const std::string& path, const SceneMesh& scene, const VertexSplit& split,
                             const VertexValues& values, const WriteOptions& options) {
   if (detail::extension_of(path) == ".glb") {
-    write_glb(path, scene, split, values, options.viewpoints);
+    write_glb(path, scene, split, values, options);
     return;
   }
   std::vector<Vec3d> positions(split.size());

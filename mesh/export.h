@@ -39,6 +39,7 @@ struct Viewpoint {
 struct WriteOptions {
   bool ascii = false;  // PLY only; OFF is always ASCII
   std::vector<Viewpoint> viewpoints;  // glTF only: camera nodes, in this order
+  std::vector<GlazingTriangle> glass;  // glTF only: the windows, a "glazing" node, see-through
 };
 
 // Any triangle mesh given by positions and corner indices, with one value per vertex.

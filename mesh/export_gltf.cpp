@@ -116,7 +116,7 @@ tinygltf::Node camera_node(tinygltf::Model& model, const Viewpoint& v, double zf
 }  // namespace
 
 void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values,
-               const std::vector<Viewpoint>& viewpoints) {
+               const WriteOptions& options) {
   const std::size_t n = split.size();
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -197,12 +197,61 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, list.size());
     model.meshes[static_cast<std::size_t>(found->second)].primitives.push_back(primitive);
   }
+  // Glass: one primitive per transmittance, under one node.
+  std::map<std::array<double, 3>, std::vector<const GlazingTriangle*>> panes;
+  for (const GlazingTriangle& t : options.glass)
+    panes[{t.transmittance.r, t.transmittance.g, t.transmittance.b}].push_back(&t);
+  if (!panes.empty()) {
+    tinygltf::Mesh glazing;
+    glazing.name = "glazing";
+    for (const auto& [tau, triangles] : panes) {
+      std::vector<float> xyz;
+      std::vector<double> glo(3, 1e300), ghi(3, -1e300);
+      for (const GlazingTriangle* t : triangles)
+        for (const Vec3d& corner : t->corners) {
+          const Vec3d p = y_up(corner);
+          for (int c = 0; c < 3; ++c) {
+            xyz.push_back(static_cast<float>(p[c]));
+            glo[c] = std::min(glo[c], static_cast<double>(xyz.back()));
+            ghi[c] = std::max(ghi[c], static_cast<double>(xyz.back()));
+          }
+        }
+      tinygltf::Material glass;
+      glass.name = "glass";
+      const double luminance = Rgb(tau[0], tau[1], tau[2]).luminance();
+      glass.pbrMetallicRoughness.baseColorFactor = {tau[0], tau[1], tau[2], 0.2 + 0.5 * (1 - std::clamp(luminance, 0.0, 1.0))};
+      glass.pbrMetallicRoughness.metallicFactor = 0;
+      glass.pbrMetallicRoughness.roughnessFactor = 0;
+      glass.alphaMode = "BLEND";
+      glass.doubleSided = true;
+      glass.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+      tinygltf::Value::Object extras;
+      extras["transmittance"] = tinygltf::Value(
+          tinygltf::Value::Array{tinygltf::Value(tau[0]), tinygltf::Value(tau[1]), tinygltf::Value(tau[2])});
+      glass.extras = tinygltf::Value(extras);
+      model.materials.push_back(glass);
+      tinygltf::Primitive primitive;
+      primitive.attributes["POSITION"] =
+          add_accessor(model, add_view(model, xyz.data(), xyz.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, xyz.size() / 3, glo, ghi);
+      primitive.material = static_cast<int>(model.materials.size() - 1);
+      primitive.mode = TINYGLTF_MODE_TRIANGLES;
+      glazing.primitives.push_back(primitive);
+    }
+    model.meshes.push_back(glazing);
+    tinygltf::Node node;
+    node.name = "glazing";
+    node.mesh = static_cast<int>(model.meshes.size() - 1);
+    model.nodes.push_back(node);
+    root.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+  }
+
   // Far enough to see the whole model from outside it (tinygltf writes zfar 0 otherwise,
   // which the specification does not allow).
   double diagonal = 0;
   for (int c = 0; c < 3; ++c) diagonal += n ? (hi[c] - lo[c]) * (hi[c] - lo[c]) : 0;
   const double zfar = std::max(1.0, 10 * std::sqrt(diagonal));
-  for (const Viewpoint& v : viewpoints) {
+  for (const Viewpoint& v : options.viewpoints) {
     model.nodes.push_back(camera_node(model, v, zfar));
     root.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
   }

@@ -8,8 +8,12 @@
 // float VEC3, e.g. `_RADIOSITY`) and `_<SCALAR>` for each named scalar (float, e.g.
 // `_ILLUMINANCE`). One node and mesh per input group (its name), one primitive per
 // material in it (its name; base colour its reflectance, KHR_materials_unlit so that
-// viewers show the baked light as it is rather than lighting it again). Viewpoints
-// become perspective cameras on nodes of their own, after the meshes' nodes, in order.
+// viewers show the baked light as it is rather than lighting it again). Glass, which is
+// not lit, follows as a node "glazing" with its own positions and no vertex colours,
+// one primitive per transmittance, its material unlit, blended and two-sided (base
+// colour the transmittance, opacity 0.2 + 0.5 (1 - its luminance); the transmittance in
+// `extras`). Viewpoints become perspective cameras on nodes of their own, after the
+// meshes' nodes, in order.
 #pragma once
 
 #include "mesh/export.h"
@@ -18,6 +22,6 @@ namespace dynrad {
 
 // Writes atomically; OutputError when the file cannot be written.
 void write_glb(const std::string& path, const SceneMesh& scene, const VertexSplit& split, const VertexValues& values,
-               const std::vector<Viewpoint>& viewpoints = {});
+               const WriteOptions& options = {});
 
 }  // namespace dynrad

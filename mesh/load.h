@@ -14,13 +14,6 @@
 
 namespace dynrad {
 
-// A triangle of a window: glass (a material with a transmittance), kept out of the
-// lit mesh.
-struct GlazingTriangle {
-  std::array<Vec3d, 3> corners;
-  Rgb transmittance;
-};
-
 struct LoadedScene {
   std::unique_ptr<SceneMesh> mesh;
   // The faces whose material transmits, triangulated: not lit, not blocking the lit

@@ -158,7 +158,7 @@ GlbSummary glb_summary_from_memory(const std::string& bytes, const std::string& 
           }
         }
       }
-      summary.colours = (summary.primitives == 0 || summary.colours) && colour;
+      if (colour) ++summary.coloured_primitives;
       std::size_t corners = n;
       if (prim.indices >= 0) {
         const std::vector<std::uint32_t> list = check.indices(prim.indices, where + " indices");

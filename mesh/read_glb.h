@@ -21,7 +21,7 @@ namespace dynrad {
 struct GlbSummary {
   std::size_t meshes = 0, primitives = 0, triangles = 0;
   std::size_t vertices = 0;       // distinct vertices, counted once per shared accessor
-  bool colours = false;           // every primitive has COLOR_0
+  std::size_t coloured_primitives = 0;  // with COLOR_0 (lit surfaces; glass has none)
   std::vector<std::string> cameras;  // perspective cameras on nodes, by node name, in node order
   Bounds bounds;                  // of the positions, in the file's (y-up) axes
   // Float SCALAR attributes whose names start with '_' (e.g. "_LUMINANCE"), the values

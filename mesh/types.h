@@ -4,6 +4,7 @@
 #include <OpenMesh/Core/Geometry/VectorT.hh>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -50,6 +51,13 @@ struct Bounds {
   bool empty() const { return !(lo[0] <= hi[0]); }
   Vec3d extent() const { return empty() ? Vec3d(0.0) : hi - lo; }
   double diagonal() const { return empty() ? 0.0 : (hi - lo).norm(); }
+};
+
+// A triangle of a window: glass (a material with a transmittance), kept out of the lit
+// mesh (mesh/load.h) and carried along unlit into glTF output (mesh/export.h).
+struct GlazingTriangle {
+  std::array<Vec3d, 3> corners;
+  Rgb transmittance;
 };
 
 inline bool is_finite(const Vec3d& p) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -43,7 +44,7 @@ TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
   const GlbSummary glb = read_glb_summary(dir.path("room.glb"));
   ASSERT_GE(glb.cameras.size(), 2u);
   EXPECT_NE(std::find(glb.cameras.begin(), glb.cameras.end(), "wall"), glb.cameras.end());
-  EXPECT_TRUE(glb.colours);
+  EXPECT_EQ(glb.coloured_primitives, glb.primitives);  // no glass in the room
   EXPECT_TRUE(glb.scalars.empty());  // emission in watts: radiometric, no _LUMINANCE
 
   const auto r = test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") +
@@ -65,6 +66,49 @@ TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
   // The title is escaped where it is shown; the configuration names the units.
   EXPECT_EQ(count(html, "Room &lt;8 m&gt; &amp; co"), 2u);
   EXPECT_EQ(count(html, "W/(m\xc2\xb2 sr)"), 1u);
+}
+
+// The JSON chunk of a .glb.
+nlohmann::json glb_json(const std::string& bytes) {
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+TEST(ViewCommand, GlbCarriesTheWindowsSeeThrough) {
+  // The daylit room's glass (MTL d 0.3: transmittance 0.7) is not lit, but a viewer
+  // should show the windows: a "glazing" node, unlit, blended, two-sided, without vertex
+  // colours, with every glazing triangle once.
+  test::TempDir dir;
+  const auto r = test::run_dynrad("solve '" + test::sample("daylight_overcast.json") + "' -o '" + dir.path("d.glb") +
+                                  "' --quality draft");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto info = test::run_dynrad("info '" + test::sample("daylight_overcast.json") + "' --json");
+  const std::size_t glazing_triangles =
+      nlohmann::json::parse(info.output.substr(info.output.find('{')))["glazing_triangles"];
+  ASSERT_GT(glazing_triangles, 0u);
+
+  const nlohmann::json j = glb_json(test::read_text(dir.path("d.glb")));
+  const auto& nodes = j["nodes"];
+  const auto node = std::find_if(nodes.begin(), nodes.end(), [](const auto& n) { return n["name"] == "glazing"; });
+  ASSERT_NE(node, nodes.end());
+  const auto& mesh = j["meshes"][(*node)["mesh"].get<int>()];
+  std::size_t corners = 0;
+  for (const auto& primitive : mesh["primitives"]) {
+    EXPECT_FALSE(primitive["attributes"].contains("COLOR_0"));
+    corners += j["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"].get<std::size_t>();
+    const auto& material = j["materials"][primitive["material"].get<int>()];
+    EXPECT_EQ(material["alphaMode"], "BLEND");
+    EXPECT_EQ(material["doubleSided"], true);
+    EXPECT_TRUE(material["extensions"].contains("KHR_materials_unlit"));
+    EXPECT_NEAR(material["extras"]["transmittance"][0].get<double>(), 0.7, 1e-9);
+    EXPECT_NEAR(material["pbrMetallicRoughness"]["baseColorFactor"][3].get<double>(), 0.2 + 0.5 * 0.3, 1e-9);
+  }
+  EXPECT_EQ(corners, 3 * glazing_triangles);
+  const GlbSummary summary = read_glb_summary(dir.path("d.glb"));
+  EXPECT_EQ(summary.primitives, summary.coloured_primitives + mesh["primitives"].size());
+  // And the page takes it.
+  EXPECT_EQ(test::run_dynrad("view '" + dir.path("d.glb") + "' -o '" + dir.path("d.html") + "'").exit_code, 0);
 }
 
 TEST(ViewCommand, RefusesWhatABrowserCouldNotShowAndWritesNothing) {

@@ -307,7 +307,10 @@ int run_solve(SolveCliOptions& options) {
 
   WriteOptions write;
   write.ascii = options.ascii;
-  if (glb) write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));
+  if (glb) {
+    write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));
+    write.glass = scene.glazing;
+  }
   write_mesh_with_values(options.output, mesh, result.split, values, write);
 
   if (!options.preview.empty()) {

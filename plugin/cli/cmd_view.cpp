@@ -49,10 +49,10 @@ int run_view(const ViewOptions& options) {
   check_output_writable(options.output);
   const std::string bytes = detail::read_file(options.input);
   const GlbSummary summary = glb_summary_from_memory(bytes, options.input);
-  if (!summary.colours)
+  if (summary.coloured_primitives == 0)
     throw InputError(options.input, 0,
-                     "has no vertex colours (COLOR_0) on every primitive, so there is no light to show. Give the .glb "
-                     "that `dynrad solve -o OUT.glb` wrote.");
+                     "has no vertex colours (COLOR_0), so there is no light to show. Give the .glb that "
+                     "`dynrad solve -o OUT.glb` wrote.");
 
   nlohmann::json config;
   const std::string title =

@@ -48,6 +48,7 @@
   // so each is kept once here with its linear values and the values read out with it.
   const layers = [];  // {colour, linear, luminance, radiosity}
   let meshes = [];
+  let litMeshes = [];  // those with the light in their vertex colours (not the glass)
   let viewpoints = [];  // {name, position, quaternion, fov}
   let bounds = new THREE.Box3();
 
@@ -88,6 +89,7 @@
         ownUv: geometry.attributes.uv || null,
         scaleUv: layer ? layer.scale : null,
       };
+      if (layer) litMeshes.push(mesh);
     }
   }
 
@@ -384,7 +386,8 @@
     updateAddress();
     raycaster.setFromCamera(new THREE.Vector2(0, 0), camera);
     raycaster.near = camera.near;
-    const hit = raycaster.intersectObjects(meshes, false)[0];
+    // The read-out looks through glass, at the lit surfaces.
+    const hit = raycaster.intersectObjects(litMeshes, false)[0];
     if (!hit || !hit.face) {
       readout.textContent = 'Cross-hair: nothing';
       return;
