@@ -256,16 +256,23 @@ std::vector<Room> find_rooms(const LitScene& scene, int up, const Storey& storey
     r.area = count[id] * cell * cell;
     if (cores[id].size() < 4 || r.area < smallest) continue;
     r.middle = {r.middle[0] / count[id], r.middle[1] / count[id]};
-    double farthest = -1;
+    std::array<double, 4> farthest{-1, -1, -1, -1};
+    std::array<std::array<double, 2>, 4> point{};
     for (std::size_t k : cores[id]) {
       const double x = storey.lo[0] + (static_cast<double>(k % nx) + 0.5) * cell;
       const double y = storey.lo[1] + (static_cast<double>(k / nx) + 0.5) * cell;
       const double d2 = (x - r.middle[0]) * (x - r.middle[0]) + (y - r.middle[1]) * (y - r.middle[1]);
-      if (d2 > farthest) {
-        farthest = d2;
-        r.corner = {x, y};
+      const int quarter = (x >= r.middle[0] ? 1 : 0) + (y >= r.middle[1] ? 2 : 0);
+      if (d2 > farthest[quarter]) {
+        farthest[quarter] = d2;
+        point[quarter] = {x, y};
       }
     }
+    std::array<int, 4> order{0, 1, 2, 3};
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return farthest[a] > farthest[b]; });
+    for (int q : order)
+      if (farthest[q] >= 0) r.corners.push_back(point[q]);
+    r.corner = r.corners.front();
     out.push_back(r);
   }
   return out;

@@ -44,6 +44,9 @@ std::vector<Storey> find_storeys(const LitScene& scene, int up);
 struct Room {
   std::array<double, 2> middle{};  // plan axes: the mean of its eroded raster points
   std::array<double, 2> corner{};  // its eroded point farthest from the middle
+  // Its eroded points farthest from the middle in each quarter around it (up to four,
+  // the farthest first; corner is the first): where a camera may stand.
+  std::vector<std::array<double, 2>> corners;
   double area = 0;                 // of its free raster cells before erosion, model units squared
 };
 

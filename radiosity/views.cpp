@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 namespace dynrad::rad {
@@ -30,6 +31,59 @@ const GridSpec* grid_at(const std::vector<GridSpec>& grids, int up, const Storey
   return nullptr;
 }
 
+// The lit surface a view shows (best_lit_view): the summed area of the distinct planes
+// met by a 48 x 48 ray sample whose radiosity is at least 1% of the display white. The
+// planes are found once: triangles grouped by their normal (to 0.01) and offset (to
+// 0.001 of the scene's diagonal), with their summed areas.
+class LitSurfaceScore {
+ public:
+  LitSurfaceScore(const LitScene& scene, double exposure) : scene_(scene), lit_(0.01 * 0.9 / exposure) {
+    plane_of_.resize(scene.triangles.size());
+    std::map<std::tuple<long, long, long, long>, std::size_t> planes;
+    for (std::size_t f = 0; f < scene.triangles.size(); ++f) {
+      const auto& t = scene.triangles[f];
+      const Vec3d& p0 = scene.positions[t[0]];
+      Vec3d n = OpenMesh::cross(scene.positions[t[1]] - p0, scene.positions[t[2]] - p0);
+      const double area = 0.5 * n.norm();
+      if (area > 0) n /= 2 * area;
+      const auto key = std::make_tuple(std::lround(100 * n[0]), std::lround(100 * n[1]), std::lround(100 * n[2]),
+                                       std::lround(OpenMesh::dot(n, p0) / (1e-3 * scene.diagonal + 1e-300)));
+      auto [it, inserted] = planes.emplace(key, plane_area_.size());
+      if (inserted) plane_area_.push_back(0);
+      plane_of_[f] = it->second;
+      plane_area_[it->second] += area;
+    }
+  }
+
+  double operator()(const View& v) const {
+    std::vector<char> seen(plane_area_.size(), 0);
+    double score = 0;
+    const int n = 48;
+    const double aspect = static_cast<double>(v.width) / v.height;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const Ray ray = camera_ray(v.camera, aspect, (i + 0.5) / n * 2 - 1, (j + 0.5) / n * 2 - 1);
+        const auto hit = scene_.visibility->intersect(ray.origin, ray.direction);
+        if (!hit.hit || !hit.front) continue;
+        const auto& t = scene_.triangles[static_cast<std::size_t>(hit.face)];
+        const Rgb b = scene_.radiosity[t[0]] * (1 - hit.u - hit.v) + scene_.radiosity[t[1]] * hit.u +
+                      scene_.radiosity[t[2]] * hit.v;
+        if (b.luminance() < lit_) continue;
+        const std::size_t plane = plane_of_[static_cast<std::size_t>(hit.face)];
+        if (seen[plane]) continue;
+        seen[plane] = 1;
+        score += plane_area_[plane];
+      }
+    return score;
+  }
+
+ private:
+  const LitScene& scene_;
+  double lit_;
+  std::vector<std::size_t> plane_of_;
+  std::vector<double> plane_area_;
+};
+
 }  // namespace
 
 const char* kind_name(View::Kind kind) {
@@ -48,6 +102,8 @@ std::vector<View> automatic_views(const LitScene& scene, const std::vector<GridS
   const Vec3d forward_down = axis_vector(up, -1);
   const Vec3d right = axis_vector(axes[0]);
   std::vector<View> out;
+  std::optional<LitSurfaceScore> score;
+  if (options.exposure > 0) score.emplace(scene, options.exposure);
   const std::vector<Storey> storeys = find_storeys(scene, up);
   for (std::size_t s = 0; s < storeys.size(); ++s) {
     const Storey& st = storeys[s];
@@ -80,12 +136,24 @@ std::vector<View> automatic_views(const LitScene& scene, const std::vector<GridS
       v.kind = View::Kind::room;
       const GridSpec* g = grid_at(grids, up, st, room.middle[0], room.middle[1]);
       v.name = g ? "room_" + g->name : storey_name + "_room" + std::to_string(r + 1);
-      v.camera.eye = plan_point(up, axes, room.corner[0], room.corner[1], st.floor + 0.6 * st.height);
       v.camera.target = plan_point(up, axes, room.middle[0], room.middle[1], st.floor + 0.3 * st.height);
       v.camera.up = axis_vector(up);
       v.camera.fov_degrees = 60;
       v.width = options.width;
       v.height = options.width * 3 / 4;
+      // Of the room's corners, the one whose view shows the most lit surface (a corner
+      // behind a cupboard, or at the end of an L, sees less); without an exposure, the
+      // farthest from the middle.
+      double best = -1;
+      for (const auto& corner : room.corners) {
+        View candidate = v;
+        candidate.camera.eye = plan_point(up, axes, corner[0], corner[1], st.floor + 0.6 * st.height);
+        const double seen = score ? (*score)(candidate) : 0;
+        if (seen > best) {
+          best = seen;
+          v.camera.eye = candidate.camera.eye;
+        }
+      }
       v.description = fmt::format("{} of storey {} ({:.3g} square units), from a corner at eye height {:.3g}",
                                   g ? "room of grid " + g->name : "room " + std::to_string(r + 1), s + 1, room.area,
                                   0.6 * st.height);
@@ -137,48 +205,13 @@ std::vector<View> merge_views(const std::vector<View>& declared, const std::vect
 }
 
 View best_lit_view(const LitScene& scene, const std::vector<View>& candidates, double exposure) {
-  // Planes: triangles grouped by their normal (to 0.01) and offset (to 0.001 of the
-  // scene's diagonal), with their summed areas.
-  std::vector<std::size_t> plane_of(scene.triangles.size());
-  std::vector<double> plane_area;
-  std::map<std::tuple<long, long, long, long>, std::size_t> planes;
-  for (std::size_t f = 0; f < scene.triangles.size(); ++f) {
-    const auto& t = scene.triangles[f];
-    const Vec3d& p0 = scene.positions[t[0]];
-    Vec3d n = OpenMesh::cross(scene.positions[t[1]] - p0, scene.positions[t[2]] - p0);
-    const double area = 0.5 * n.norm();
-    if (area > 0) n /= 2 * area;
-    const auto key = std::make_tuple(std::lround(100 * n[0]), std::lround(100 * n[1]), std::lround(100 * n[2]),
-                                     std::lround(OpenMesh::dot(n, p0) / (1e-3 * scene.diagonal + 1e-300)));
-    auto [it, inserted] = planes.emplace(key, plane_area.size());
-    if (inserted) plane_area.push_back(0);
-    plane_of[f] = it->second;
-    plane_area[it->second] += area;
-  }
-  const double lit = 0.01 * 0.9 / exposure;
+  const LitSurfaceScore score(scene, exposure);
   View best = candidates.front();
   double best_score = -1;
   for (const View& v : candidates) {
-    std::vector<char> seen(plane_area.size(), 0);
-    double score = 0;
-    const int n = 48;
-    const double aspect = static_cast<double>(v.width) / v.height;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const Ray ray = camera_ray(v.camera, aspect, (i + 0.5) / n * 2 - 1, (j + 0.5) / n * 2 - 1);
-        const auto hit = scene.visibility->intersect(ray.origin, ray.direction);
-        if (!hit.hit || !hit.front) continue;
-        const auto& t = scene.triangles[static_cast<std::size_t>(hit.face)];
-        const Rgb b = scene.radiosity[t[0]] * (1 - hit.u - hit.v) + scene.radiosity[t[1]] * hit.u +
-                      scene.radiosity[t[2]] * hit.v;
-        if (b.luminance() < lit) continue;
-        const std::size_t plane = plane_of[static_cast<std::size_t>(hit.face)];
-        if (seen[plane]) continue;
-        seen[plane] = 1;
-        score += plane_area[plane];
-      }
-    if (score > best_score) {
-      best_score = score;
+    const double s = score(v);
+    if (s > best_score) {
+      best_score = s;
       best = v;
     }
   }

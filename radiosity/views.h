@@ -37,10 +37,16 @@ struct ViewOptions {
   int width = 800;        // room views' width (height 3/4 of it); plans fit this width
   bool plans = true;      // a plan view per storey
   bool rooms = true;      // a view per room
+  // The display exposure (radiosity to display white 0.9). When set, a room's camera
+  // stands in whichever of its corners sees the most lit surface (as best_lit_view
+  // scores); 0: in the corner farthest from the room's middle.
+  double exposure = 0;
 };
 
 // Plans of each storey and a view of each room, named plan_storeyN and room_NAME (a
-// room takes the name of a grid whose polygon holds its middle, else storeyN_roomK).
+// room takes the name of a grid whose polygon holds its middle, else storeyN_roomK). A
+// room's camera stands in a corner at 0.6 of the ceiling height, looking at the room's
+// middle at 0.3 of it.
 std::vector<View> automatic_views(const LitScene& scene, const std::vector<GridSpec>& grids,
                                   const ViewOptions& options = {});
 

@@ -172,6 +172,40 @@ TEST(Views, RoomsTakeTheirGridsNames) {
   EXPECT_NE(std::find(names.begin(), names.end(), "storey1_room1"), names.end());
 }
 
+TEST(Views, RoomCameraStandsWhereItSeesTheMostLitSurface) {
+  // A 6 x 4 x 2.7 m room whose light falls off along x, from 0.5 at x = 0 to 0 at x = 6.
+  // At an exposure that counts 0.25 and up as lit (1% of display white 0.9 / 0.036), the
+  // lit half is x < 3: a camera in a corner of the dark half looks into it, one in the
+  // lit half looks away from it. Without an exposure the camera stands in the farthest
+  // corner, as before.
+  LitBuilder b;
+  b.box(Vec3d(0, 0, 0), Vec3d(6, 4, 2.7), true, [](const Vec3d& p) { return Rgb(0.5 * (1 - p[0] / 6)); });
+  const rad::LitScene& scene = b.done();
+  rad::ViewOptions options;
+  options.plans = false;
+  options.exposure = 0.009 / 0.25;
+  const std::vector<rad::View> chosen = rad::automatic_views(scene, {}, options);
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_GT(chosen[0].camera.eye[0], 3.0);
+  EXPECT_LT(chosen[0].camera.target[0] - chosen[0].camera.eye[0], 0.0);  // looking towards the light
+
+  const std::vector<rad::Room> rooms = rad::find_rooms(scene, 2, rad::find_storeys(scene, 2).at(0));
+  ASSERT_EQ(rooms.size(), 1u);
+  ASSERT_EQ(rooms[0].corners.size(), 4u);  // one in each quarter around the middle
+  for (const auto& c : rooms[0].corners) {
+    // 0.54 m in from the walls (the erosion), to within two raster cells.
+    EXPECT_NEAR(std::min(c[0], 6 - c[0]), 0.54, 0.15);
+    EXPECT_NEAR(std::min(c[1], 4 - c[1]), 0.54, 0.15);
+  }
+  options.exposure = 0;
+  const std::vector<rad::View> farthest = rad::automatic_views(scene, {}, options);
+  ASSERT_EQ(farthest.size(), 1u);
+  // (The farthest corner lies in the lit half, so the choice above is the score's.)
+  EXPECT_LT(rooms[0].corner[0], 3.0);
+  EXPECT_NEAR(farthest[0].camera.eye[0], rooms[0].corner[0], 1e-12);
+  EXPECT_NEAR(farthest[0].camera.eye[1], rooms[0].corner[1], 1e-12);
+}
+
 TEST(Views, DeclaredCameraLooksWhereItSays) {
   // The -x wall of a room brightens upwards (z) and along +y: a camera looking at it
   // along -x with z up has +y to its right, so its picture brightens up and right.

@@ -102,14 +102,16 @@ int run_grid(const GridOptions& options) {
                            {"units", lit.photometric ? "photometric" : "radiometric"},
                            {"grids", nlohmann::json::array()}};
   if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene);
+  std::vector<char> include(scene.radiosity.size(), 1);
+  for (std::size_t f = 0; f < scene.triangles.size(); ++f)
+    if (!scene.emission[f].is_zero())
+      for (std::uint32_t v : scene.triangles[f]) include[v] = 0;
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(scene.radiosity, include);
+  rad::ViewOptions view_options;
+  view_options.exposure = exposure;
   const std::vector<rad::View> views =
-      automatic_views ? rad::merge_views(cameras, rad::automatic_views(scene, grids)) : cameras;
+      automatic_views ? rad::merge_views(cameras, rad::automatic_views(scene, grids, view_options)) : cameras;
   if (!views.empty()) {
-    std::vector<char> include(scene.radiosity.size(), 1);
-    for (std::size_t f = 0; f < scene.triangles.size(); ++f)
-      if (!scene.emission[f].is_zero())
-        for (std::uint32_t v : scene.triangles[f]) include[v] = 0;
-    const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(scene.radiosity, include);
     report["exposure"] = exposure;
     report["views"] = views_json(write_views(prefix, scene, views, exposure));
   }

@@ -289,7 +289,11 @@ int run_solve(SolveCliOptions& options) {
     scene_lit = std::make_unique<rad::LitScene>(
         rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
   std::vector<rad::View> found_views;
-  if (automatic_views || !options.preview.empty() || glb) found_views = rad::automatic_views(*scene_lit, grids);
+  if (automatic_views || !options.preview.empty() || glb) {
+    rad::ViewOptions view_options;
+    view_options.exposure = exposure;
+    found_views = rad::automatic_views(*scene_lit, grids, view_options);
+  }
   // The view that shows the most lit surface: from outside an open model (a Cornell box),
   // from a room's corner in a closed building.
   std::optional<rad::View> chosen_view;
