@@ -61,6 +61,10 @@
 namespace dynrad::rad {
 
 bool Solver::shoot_once() {
+  shot_start_ = std::chrono::steady_clock::now();
+  shot_points_ = 0;
+  next_beat_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   (shot_start_ + std::chrono::seconds(2)).time_since_epoch()).count();
   std::uint32_t i = 0;
   Rgb shot;
   Rgb unshot;  // the sender's, before this shot

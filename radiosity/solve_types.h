@@ -74,6 +74,11 @@ struct SolveOptions {
   std::function<bool()> should_stop;
   // Called after every shot.
   std::function<void(std::size_t iteration, double unshot_fraction)> on_shot;
+  // Called during a shot, at most every 2 s, from any thread: how many receiving points
+  // the shot has computed so far and its seconds. A sky's first shot on a building can
+  // take minutes (about a thousand rays per point); this is its sign of life. A stop
+  // (should_stop) still waits for the shot's end, so that the solution stays whole.
+  std::function<void(std::size_t points, double seconds)> on_busy;
 };
 
 // Power bookkeeping in W per channel (when lengths are metres). After every shot,

@@ -428,10 +428,24 @@ void Solver::compute_corner_form_factors(ElementId e) {
     CornerFormFactor& f = form_factor_[id];
     f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
     __atomic_store_n(stamp, done, __ATOMIC_RELEASE);
+    beat();
   }
   if (!wait) return;
   for (std::uint32_t id : corner_receiver_[e])
     while (__atomic_load_n(&form_factor_shot_[id], __ATOMIC_ACQUIRE) != done) std::this_thread::yield();
+}
+
+void Solver::beat() {
+  if (!options_.on_busy) return;
+  const std::size_t points = shot_points_.fetch_add(1, std::memory_order_relaxed) + 1;
+  if (points % 64) return;  // the clock is read now and then only
+  const auto now = std::chrono::steady_clock::now();
+  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
+  std::int64_t due = next_beat_.load(std::memory_order_relaxed);
+  if (now_ns < due) return;
+  // One thread takes the beat; the others see the new due time.
+  if (!next_beat_.compare_exchange_strong(due, now_ns + 2'000'000'000, std::memory_order_relaxed)) return;
+  options_.on_busy(points, std::chrono::duration<double>(now - shot_start_).count());
 }
 
 void Solver::register_receivers(ElementId first) {

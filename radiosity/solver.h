@@ -22,6 +22,8 @@
 #include "radiosity/vertex_plane_map.h"
 #include "radiosity/visibility.h"
 
+#include <atomic>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -136,6 +138,13 @@ class Solver {
   double seconds_in_embree() const { return visibility_->seconds_in_embree(); }
 
  private:
+  // A sign of life during a long shot (SolveOptions::on_busy): counts the receiving points
+  // computed and calls on_busy when 2 s have passed since the last call.
+  void beat();
+  std::atomic<std::size_t> shot_points_{0};
+  std::chrono::steady_clock::time_point shot_start_;
+  std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
+
   // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1.
   bool is_luminaire(std::uint32_t id) const { return id >= patches_.size(); }
   const Luminaire& luminaire(std::uint32_t id) const { return luminaires_[id - patches_.size()]; }

@@ -95,6 +95,26 @@ TEST(NoLostWork, InterruptedSolveReplacesEveryOutputWithACompleteOne) {
   EXPECT_EQ(test::read_text(out.preview).substr(1, 3), "PNG");
 }
 
+// A long first shot (the daylit room's sky at high quality: about 10 s in one shot) shows
+// it is alive every 2 s, also when the log is not a terminal; Ctrl-C during it is
+// answered at once and honoured when the shot ends, with the solution written.
+TEST(NoLostWork, LongShotShowsProgressAndAStopWaitsForItsEnd) {
+  TempDir dir;
+  const std::string lit = dir.path("d.ply");
+  const auto r = test::run_dynrad_and_signal(
+      "solve '" + test::sample("daylight_overcast.json") + "' -o '" + lit + "' --quality high --iterations 2", 3.0,
+      "INT");
+  EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
+  const std::size_t running = r.output.find("progress: shot 1 running, ");
+  ASSERT_NE(running, std::string::npos) << r.output;
+  const std::size_t asked = r.output.find("stopping when it ends, then writing the solution");
+  EXPECT_NE(asked, std::string::npos) << r.output;
+  EXPECT_GT(asked, running);
+  // The first shot finished (its light is in the solution), the second never started.
+  EXPECT_NE(r.output.find("1 shots in"), std::string::npos) << r.output;
+  EXPECT_EQ(test::read_text(lit).rfind("ply\n", 0), 0u);
+}
+
 TEST(NoLostWork, FailedDiffLeavesTheExistingOutputUntouched) {
   TempDir dir;
   const std::string existing = dir.write("d.ply", kPrecious);

@@ -86,6 +86,7 @@ class Progress {
         start_(std::chrono::steady_clock::now()), last_(start_) {}
   // `error` is the estimated error of the values so far (negative: not estimated yet).
   void update(std::size_t shot, double unshot, double error, std::size_t elements) {
+    shots_ = shot;
     if (quiet_) return;
     const auto now = std::chrono::steady_clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
@@ -109,6 +110,16 @@ class Progress {
     std::fflush(stderr);
     drawn_ = true;
   }
+  // During a long shot (SolveOptions::on_busy; from a worker thread, never at the same
+  // time as update): a line that says the shot goes on, and that a stop waits for it.
+  void busy(std::size_t points, double seconds, bool stop_requested) {
+    if (quiet_) return;
+    const std::string stop = stop_requested ? "; stopping when it ends, then writing the solution" : "";
+    std::fprintf(stderr, "%sprogress: shot %zu running, %zu points lit in %.0f s%s%s", terminal_ ? "\r  " : "",
+                 shots_ + 1, points, seconds, stop.c_str(), terminal_ ? "   " : "\n");
+    std::fflush(stderr);
+    drawn_ = drawn_ || terminal_;
+  }
   void finish() {
     if (drawn_) std::fprintf(stderr, "\n");
   }
@@ -117,6 +128,7 @@ class Progress {
   bool terminal_, quiet_;
   double converge_;
   bool drawn_ = false;
+  std::size_t shots_ = 0;  // shots done
   std::chrono::steady_clock::time_point start_, last_;
 };
 
@@ -252,6 +264,9 @@ int run_solve(SolveCliOptions& options) {
     const rad::SolveReport& so_far = running->report();
     const double error = so_far.estimated_error.total() > 0 ? so_far.estimated_error.total() : -1;
     progress.update(shot, unshot, error, hierarchy.element_count());
+  };
+  options.solve.on_busy = [&](std::size_t points, double seconds) {
+    progress.busy(points, seconds, g_stop_requested.load());
   };
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
