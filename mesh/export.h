@@ -40,6 +40,9 @@ struct WriteOptions {
   bool ascii = false;  // PLY only; OFF is always ASCII
   std::vector<Viewpoint> viewpoints;  // glTF only: camera nodes, in this order
   std::vector<GlazingTriangle> glass;  // glTF only: the windows, a "glazing" node, see-through
+  // glTF only: what a viewer shows where the model is not (the sky, in daylight), as a
+  // linear colour like COLOR_0's, in the scene's extras as "background". Negative: none.
+  Rgb background{-1, -1, -1};
 };
 
 // Any triangle mesh given by positions and corner indices, with one value per vertex.

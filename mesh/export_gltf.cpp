@@ -255,6 +255,12 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
     model.nodes.push_back(camera_node(model, v, zfar));
     root.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
   }
+  if (options.background.r >= 0) {
+    tinygltf::Value::Object extras;
+    extras["background"] = tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(options.background.r), tinygltf::Value(options.background.g), tinygltf::Value(options.background.b)});
+    root.extras = tinygltf::Value(extras);
+  }
   model.scenes.push_back(root);
   model.defaultScene = 0;
 

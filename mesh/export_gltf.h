@@ -13,7 +13,7 @@
 // one primitive per transmittance, its material unlit, blended and two-sided (base
 // colour the transmittance, opacity 0.2 + 0.5 (1 - its luminance); the transmittance in
 // `extras`). Viewpoints become perspective cameras on nodes of their own, after the
-// meshes' nodes, in order.
+// meshes' nodes, in order. A background colour goes into the scene's extras.
 #pragma once
 
 #include "mesh/export.h"

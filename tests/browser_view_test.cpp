@@ -36,6 +36,13 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
+// The JSON chunk of a .glb.
+nlohmann::json glb_json(const std::string& bytes) {
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
 TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
   test::TempDir dir;
   solve_room(dir);
@@ -46,6 +53,8 @@ TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
   EXPECT_NE(std::find(glb.cameras.begin(), glb.cameras.end(), "wall"), glb.cameras.end());
   EXPECT_EQ(glb.coloured_primitives, glb.primitives);  // no glass in the room
   EXPECT_TRUE(glb.scalars.empty());  // emission in watts: radiometric, no _LUMINANCE
+  // No sky: no background for the viewer to show.
+  EXPECT_FALSE(glb_json(test::read_text(dir.path("room.glb")))["scenes"][0].contains("extras"));
 
   const auto r = test::run_dynrad("view '" + dir.path("room.glb") + "' -o '" + dir.path("room.html") +
                                   "' --title 'Room <8 m> & co'");
@@ -66,13 +75,6 @@ TEST(ViewCommand, GlbCarriesTheViewpointsAndThePageHoldsTheModel) {
   // The title is escaped where it is shown; the configuration names the units.
   EXPECT_EQ(count(html, "Room &lt;8 m&gt; &amp; co"), 2u);
   EXPECT_EQ(count(html, "W/(m\xc2\xb2 sr)"), 1u);
-}
-
-// The JSON chunk of a .glb.
-nlohmann::json glb_json(const std::string& bytes) {
-  std::uint32_t length = 0;
-  std::memcpy(&length, bytes.data() + 12, 4);
-  return nlohmann::json::parse(bytes.substr(20, length));
 }
 
 TEST(ViewCommand, GlbCarriesTheWindowsSeeThrough) {
@@ -105,6 +107,11 @@ TEST(ViewCommand, GlbCarriesTheWindowsSeeThrough) {
     EXPECT_NEAR(material["pbrMetallicRoughness"]["baseColorFactor"][3].get<double>(), 0.2 + 0.5 * 0.3, 1e-9);
   }
   EXPECT_EQ(corners, 3 * glazing_triangles);
+  // Under the sky the background is the sky as the model's colours show it: white here
+  // (its luminance near the horizon, some 1,300 cd/m^2, is far above the display white).
+  const auto& extras = j["scenes"][0]["extras"];
+  ASSERT_TRUE(extras.contains("background"));
+  for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(extras["background"][c].get<double>(), 1.0);
   const GlbSummary summary = read_glb_summary(dir.path("d.glb"));
   EXPECT_EQ(summary.primitives, summary.coloured_primitives + mesh["primitives"].size());
   // And the page takes it.

@@ -6,6 +6,7 @@
 // since progressive refinement is usable at any moment; 1 internal error.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/io_util.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
@@ -329,6 +330,28 @@ int run_solve(SolveCliOptions& options) {
   if (glb) {
     write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));
     write.glass = scene.glazing;
+    // Under a sky, a viewer's background is the sky as the model's colours show it: its
+    // mean luminance 10 degrees above the horizon, as the radiosity of a surface of that
+    // luminance (B = pi L) through the same exposure (usually white: brighter than
+    // anything inside). Windows then look out into daylight, not into the dark.
+    for (const rad::Luminaire& l : luminaires)
+      if (l.kind == rad::Luminaire::Kind::sky && l.daylight) {
+        const rad::SkyModel& sky = l.daylight->sky;
+        const Vec3d up = sky.up.normalized();
+        Vec3d across = std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
+        across = (across - up * OpenMesh::dot(across, up)).normalized();
+        const Vec3d third = OpenMesh::cross(up, across);
+        double sum = 0;
+        const int n = 72;
+        for (int k = 0; k < n; ++k) {
+          const double azimuth = 2 * M_PI * k / n, elevation = 10 * M_PI / 180;
+          sum += sky.luminance((across * std::cos(azimuth) + third * std::sin(azimuth)) * std::cos(elevation) +
+                               up * std::sin(elevation));
+        }
+        const auto shown = rad::tone_map({Rgb(M_PI * sum / n)}, exposure, "sky").display[0];
+        write.background = Rgb(detail::srgb_to_linear(shown[0] / 255.0), detail::srgb_to_linear(shown[1] / 255.0),
+                               detail::srgb_to_linear(shown[2] / 255.0));
+      }
   }
   write_mesh_with_values(options.output, mesh, result.split, values, write);
 

@@ -51,6 +51,7 @@
   let litMeshes = [];  // those with the light in their vertex colours (not the glass)
   let viewpoints = [];  // {name, position, quaternion, fov}
   let bounds = new THREE.Box3();
+  let background = null;  // [r, g, b] linear, from the scene's extras
 
   function collectLayers(root) {
     const seen = new Set();
@@ -164,6 +165,10 @@
       if (colour.isInterleavedBufferAttribute) colour.data.needsUpdate = true;
       else colour.needsUpdate = true;
     }
+    // The background: the file's (the sky of a daylight solve, linear like the vertex
+    // colours) through the same exposure, else dark grey.
+    if (background) scene.background.setRGB(srgb(gain * background[0]), srgb(gain * background[1]),
+                                             srgb(gain * background[2]));
     for (const mesh of meshes) {
       const own = mesh.userData.dynrad;
       if (!own.scaleUv) continue;  // no colours: left as the file has it
@@ -459,6 +464,9 @@
 
   function start(gltf) {
     const root = gltf.scene;
+    const extras = root.userData || {};
+    if (Array.isArray(extras.background) && extras.background.length === 3 && extras.background.every(isFinite))
+      background = extras.background.map(Number);
     scene.add(root);
     root.updateMatrixWorld(true);
     collectLayers(root);
