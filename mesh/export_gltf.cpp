@@ -2,8 +2,13 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/io_util.h"
 #include "mesh/scene_mesh.h"
 
+#include <boost/qvm/mat.hpp>
+#include <boost/qvm/quat.hpp>
+#include <boost/qvm/quat_access.hpp>
+#include <boost/qvm/quat_operations.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -45,11 +50,6 @@ int add_accessor(tinygltf::Model& model, int view, int component, int type, std:
   return static_cast<int>(model.accessors.size() - 1);
 }
 
-double srgb_to_linear(std::uint8_t byte) {
-  const double c = byte / 255.0;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 std::string attribute_name(const std::string& name) {
   std::string out = "_";
   for (char c : name) out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -74,42 +74,20 @@ tinygltf::Node camera_node(tinygltf::Model& model, const Viewpoint& v, double zf
   const Vec3d forward = (y_up(v.target) - y_up(v.eye)).normalized();
   const Vec3d right = OpenMesh::cross(forward, y_up(v.up)).normalized();
   const Vec3d up = OpenMesh::cross(right, forward);
-  const Vec3d back = -forward;
-  // Rotation matrix columns (right, up, back) to a unit quaternion (x, y, z, w).
-  const double m00 = right[0], m11 = up[1], m22 = back[2];
-  const double trace = m00 + m11 + m22;
-  double x, y, z, w;
-  if (trace > 0) {
-    const double s = 2 * std::sqrt(1 + trace);
-    w = s / 4;
-    x = (up[2] - back[1]) / s;
-    y = (back[0] - right[2]) / s;
-    z = (right[1] - up[0]) / s;
-  } else if (m00 > m11 && m00 > m22) {
-    const double s = 2 * std::sqrt(1 + m00 - m11 - m22);
-    w = (up[2] - back[1]) / s;
-    x = s / 4;
-    y = (up[0] + right[1]) / s;
-    z = (back[0] + right[2]) / s;
-  } else if (m11 > m22) {
-    const double s = 2 * std::sqrt(1 + m11 - m00 - m22);
-    w = (back[0] - right[2]) / s;
-    x = (up[0] + right[1]) / s;
-    y = s / 4;
-    z = (back[1] + up[2]) / s;
-  } else {
-    const double s = 2 * std::sqrt(1 + m22 - m00 - m11);
-    w = (right[1] - up[0]) / s;
-    x = (back[0] + right[2]) / s;
-    y = (back[1] + up[2]) / s;
-    z = s / 4;
+  // The rotation's matrix has columns (right, up, back); Boost.QVM makes it a quaternion.
+  boost::qvm::mat<double, 3, 3> rotation;
+  for (int r = 0; r < 3; ++r) {
+    rotation.a[r][0] = right[r];
+    rotation.a[r][1] = up[r];
+    rotation.a[r][2] = -forward[r];
   }
+  const auto q = boost::qvm::convert_to<boost::qvm::quat<double>>(rotation);
   tinygltf::Node node;
   node.name = v.name;
   node.camera = static_cast<int>(model.cameras.size() - 1);
   const Vec3d eye = y_up(v.eye);
   node.translation = {eye[0], eye[1], eye[2]};
-  node.rotation = {x, y, z, w};
+  node.rotation = {boost::qvm::X(q), boost::qvm::Y(q), boost::qvm::Z(q), boost::qvm::S(q)};
   return node;
 }
 
@@ -133,7 +111,7 @@ void write_glb(const std::string& path, const SceneMesh& scene, const VertexSpli
       position[3 * i + c] = static_cast<float>(p[c]);
       lo[c] = std::min(lo[c], static_cast<double>(position[3 * i + c]));
       hi[c] = std::max(hi[c], static_cast<double>(position[3 * i + c]));
-      colour[3 * i + c] = static_cast<float>(srgb_to_linear(values.display[i][c]));
+      colour[3 * i + c] = static_cast<float>(detail::srgb_to_linear(values.display[i][c] / 255.0));
       linear[3 * i + c] = static_cast<float>(values.linear[i][c]);
     }
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace dynrad::rad {
@@ -15,6 +16,13 @@ namespace dynrad::rad {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
+
+// Two unit axes in the horizon's plane, at right angles, for rings of directions about
+// `up` (unit).
+std::pair<Vec3d, Vec3d> horizon_axes(const Vec3d& up) {
+  const Vec3d east = OpenMesh::cross(std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), up).normalized();
+  return {east, OpenMesh::cross(up, east)};
+}
 
 }  // namespace
 
@@ -65,13 +73,24 @@ double SkyModel::relative(const Vec3d& d) const {
   return 0;
 }
 
+double SkyModel::mean_luminance_at(double elevation) const {
+  const auto [east, north] = horizon_axes(up);
+  const double e = elevation * M_PI / 180;
+  const int n = 72;
+  double sum = 0;
+  for (int k = 0; k < n; ++k) {
+    const double azimuth = 2 * M_PI * k / n;
+    sum += luminance((east * std::cos(azimuth) + north * std::sin(azimuth)) * std::cos(e) + up * std::sin(e));
+  }
+  return sum / n;
+}
+
 double SkyModel::luminance(const Vec3d& d) const {
   return OpenMesh::dot(d, up) > 0 ? zenith_luminance * relative(d) : ground_luminance;
 }
 
 double SkyModel::horizontal_illuminance() const {
-  const Vec3d east = OpenMesh::cross(std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), up).normalized();
-  const Vec3d north = OpenMesh::cross(up, east);
+  const auto [east, north] = horizon_axes(up);
   const int azimuths = 256;
   // E = integral of L cos Z d(omega): over cos Z in (0, 1) (Gauss-Legendre, Boost.Math)
   // and the azimuth (midpoint rule, exact for the smooth periodic integrand).

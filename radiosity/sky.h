@@ -52,6 +52,9 @@ struct SkyModel {
   // Gauss-Legendre in cos Z (64 nodes) times 256 azimuths (exact to 1e-7 for the
   // overcast and uniform skies; the sun's corona of clear skies to about 1e-4).
   double horizontal_illuminance() const;
+  // The mean luminance (cd/m^2) all round at `elevation` degrees above the horizon (72
+  // azimuths): what one sees of the sky through a window.
+  double mean_luminance_at(double elevation) const;
   // A short description: "CIE overcast sky, Lz 3183 cd/m2 (10000 lx horizontal)".
   std::string describe() const;
 };

@@ -36,6 +36,20 @@ TEST(Sky, OvercastAndUniformHorizontalIlluminanceMatchTheirClosedForms) {
   EXPECT_NEAR(sky.horizontal_illuminance(), M_PI * 1000, 1e-6 * 1000);
 }
 
+TEST(Sky, MeanLuminanceAtAnElevationMatchesTheClosedForms) {
+  // Overcast: L = Lz (1 + 2 sin e) / 3, the same all round; uniform: Lz. With y as up the
+  // ring is taken about y. (The horizon itself, e = 0, belongs to the ground.)
+  rad::SkyModel sky;
+  sky.zenith_luminance = 1000;
+  sky.type = rad::SkyModel::Type::cie_overcast;
+  for (double e : {5.0, 10.0, 45.0, 89.0})
+    EXPECT_NEAR(sky.mean_luminance_at(e), 1000 * (1 + 2 * std::sin(e * M_PI / 180)) / 3, 1e-9) << e;
+  sky.up = Vec3d(0, 1, 0);
+  EXPECT_NEAR(sky.mean_luminance_at(10), 1000 * (1 + 2 * std::sin(10 * M_PI / 180)) / 3, 1e-9);
+  sky.type = rad::SkyModel::Type::uniform;
+  EXPECT_NEAR(sky.mean_luminance_at(30), 1000, 1e-9);
+}
+
 TEST(Sky, HorizonOverZenithFollowsTheGradation) {
   rad::SkyModel sky;
   const Vec3d horizon = Vec3d(1, 0, 1e-9).normalized(), zenith(0, 0, 1);

@@ -328,7 +328,7 @@ int run_solve(SolveCliOptions& options) {
   WriteOptions write;
   write.ascii = options.ascii;
   if (glb) {
-    write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));
+    write.viewpoints = viewpoints(*chosen_view, rad::merge_views(cameras, found_views));  // all, for the viewer
     write.glass = scene.glazing;
     // Under a sky, a viewer's background is the sky as the model's colours show it: its
     // mean luminance 10 degrees above the horizon, as the radiosity of a surface of that
@@ -336,19 +336,8 @@ int run_solve(SolveCliOptions& options) {
     // anything inside). Windows then look out into daylight, not into the dark.
     for (const rad::Luminaire& l : luminaires)
       if (l.kind == rad::Luminaire::Kind::sky && l.daylight) {
-        const rad::SkyModel& sky = l.daylight->sky;
-        const Vec3d up = sky.up.normalized();
-        Vec3d across = std::abs(up[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-        across = (across - up * OpenMesh::dot(across, up)).normalized();
-        const Vec3d third = OpenMesh::cross(up, across);
-        double sum = 0;
-        const int n = 72;
-        for (int k = 0; k < n; ++k) {
-          const double azimuth = 2 * M_PI * k / n, elevation = 10 * M_PI / 180;
-          sum += sky.luminance((across * std::cos(azimuth) + third * std::sin(azimuth)) * std::cos(elevation) +
-                               up * std::sin(elevation));
-        }
-        const auto shown = rad::tone_map({Rgb(M_PI * sum / n)}, exposure, "sky").display[0];
+        const double b = M_PI * l.daylight->sky.mean_luminance_at(10);
+        const auto shown = rad::tone_map({Rgb(b)}, exposure, "sky").display[0];
         write.background = Rgb(detail::srgb_to_linear(shown[0] / 255.0), detail::srgb_to_linear(shown[1] / 255.0),
                                detail::srgb_to_linear(shown[2] / 255.0));
       }
