@@ -90,7 +90,9 @@ double SkyModel::luminance(const Vec3d& d) const {
 }
 
 double SkyModel::horizontal_illuminance() const {
-  const auto [east, north] = horizon_axes(up);
+  // (plain variables, not a structured binding: the lambda below captures them)
+  const std::pair<Vec3d, Vec3d> axes = horizon_axes(up);
+  const Vec3d east = axes.first, north = axes.second;
   const int azimuths = 256;
   // E = integral of L cos Z d(omega): over cos Z in (0, 1) (Gauss-Legendre, Boost.Math)
   // and the azimuth (midpoint rule, exact for the smooth periodic integrand).
