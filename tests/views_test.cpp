@@ -177,9 +177,14 @@ TEST(Views, RoomCameraStandsWhereItSeesTheMostLitSurface) {
   // At an exposure that counts 0.25 and up as lit (1% of display white 0.9 / 0.036), the
   // lit half is x < 3: a camera in a corner of the dark half looks into it, one in the
   // lit half looks away from it. Without an exposure the camera stands in the farthest
-  // corner, as before.
+  // corner, as before. A 0.3 m column against the wall at y = 0 in the lit half moves
+  // the room's middle towards +x and +y, so that the corner at (0.54, 0.54) is the
+  // farthest by a clear margin: in an empty room the four corners tie, and which one
+  // wins would be rounding's choice.
   LitBuilder b;
-  b.box(Vec3d(0, 0, 0), Vec3d(6, 4, 2.7), true, [](const Vec3d& p) { return Rgb(0.5 * (1 - p[0] / 6)); });
+  const Value falling = [](const Vec3d& p) { return Rgb(0.5 * (1 - p[0] / 6)); };
+  b.box(Vec3d(0, 0, 0), Vec3d(6, 4, 2.7), true, falling);
+  b.box(Vec3d(1.2, 0, 0), Vec3d(1.5, 0.3, 2.7), false, falling);
   const rad::LitScene& scene = b.done();
   rad::ViewOptions options;
   options.plans = false;
@@ -201,7 +206,8 @@ TEST(Views, RoomCameraStandsWhereItSeesTheMostLitSurface) {
   const std::vector<rad::View> farthest = rad::automatic_views(scene, {}, options);
   ASSERT_EQ(farthest.size(), 1u);
   // (The farthest corner lies in the lit half, so the choice above is the score's.)
-  EXPECT_LT(rooms[0].corner[0], 3.0);
+  EXPECT_NEAR(rooms[0].corner[0], 0.54, 0.15);
+  EXPECT_NEAR(rooms[0].corner[1], 0.54, 0.15);
   EXPECT_NEAR(farthest[0].camera.eye[0], rooms[0].corner[0], 1e-12);
   EXPECT_NEAR(farthest[0].camera.eye[1], rooms[0].corner[1], 1e-12);
 }
