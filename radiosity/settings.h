@@ -58,6 +58,7 @@ struct SettingsRequest {
   double converge = -1;  // given: stop by unshot power instead of by the error target
   double pushdown = -1, pushdown_floor = -1;
   double memory_budget_mib = -1;
+  bool clusters = true;  // false: every patch on its own (SolveOptions::cluster_area 0)
 };
 
 struct AppliedSettings {
@@ -73,7 +74,9 @@ struct RefineSettings;  // radiosity/solver.h
 // target (SolveOptions::error_target, with converge 1e-4 as a floor); progressive
 // and adaptive keep their classic rules (a tenth of the diagonal, three levels, 1%
 // unshot). Writes refine.max_level, the push-down thresholds, refine.memory_budget,
-// solve.error_target and solve.converge.
+// solve.error_target, solve.converge and the face clusters (solve.cluster_area, a
+// 32nd of the patch size squared: an eighth of a right triangle whose longest edge is
+// the patch size; solve.cluster_radius, half the patch size; none for adaptive).
 AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& request, RefineSettings& refine,
                                SolveOptions& solve);
 

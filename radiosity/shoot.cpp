@@ -83,6 +83,19 @@ bool Solver::shoot_once() {
       luminaire_unshot_ += luminaires_[m].colour * luminaire_flux_[m];
     report_.energy.unshot = report_.energy.unshot - shot * luminaire_flux_[k];
     unshot_staying_ = unshot_staying_ - shot * luminaire_flux_[k];
+  } else if (is_cluster(brightest_patch())) {
+    // A face cluster sends what its patches reflected, all at once and exactly as it
+    // holds it (no overshoot, no shape; see solver.h).
+    i = brightest_patch();
+    shot = unshot = start_cluster_shot(cluster_index(i));
+    if (unshot.is_zero()) return false;
+    sender_ = i;
+    current_shot_ = shot;
+    shape_.on = false;
+    shape_.max_weight = 1;
+    const double lost = cluster_state_[cluster_index(i)].lost;
+    report_.energy.unshot = report_.energy.unshot - shot;
+    unshot_staying_ = unshot_staying_ - shot * (lost >= 0 ? 1 - lost : 1.0);
   } else {
     // pick brightest patch: i
     i = brightest_patch();
@@ -171,7 +184,9 @@ bool Solver::shoot_once() {
         // Dynamic refines deeper where a shadow's edge crosses q (RefineSettings::shadow_levels).
         const bool deeper = refine_.method == Method::dynamic && refine_.shadow_levels > 0 &&
                             el.generation >= max_generation && shadow_crosses(q);
-        const bool can_split = el.generation < max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
+        // (the patches of face clusters are not refined: they are small already)
+        const bool can_split =
+            !patch.clustered && el.generation < max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
         const bool odd = el.generation % 2 == 1;
         // The push-down error costs three closed forms; it is estimated only where the
         // oracle's first condition (the cumulated gradient) holds and it can decide. Its
@@ -282,7 +297,7 @@ bool Solver::shoot_once() {
     complete_split.swap(complete_split_next);
   }
   account_transfers(terminals, reach, i, shot);
-  if (!is_luminaire(i)) patches_[i].shot += shot;
+  if (!is_luminaire(i) && !is_cluster(i)) patches_[i].shot += shot;
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   report_.transfers_history.push_back(report_.energy_transfers);

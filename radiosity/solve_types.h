@@ -56,6 +56,15 @@ struct SolveOptions {
   // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
+  // Face clusters (mesh/face_clusters.h): patches of less area than cluster_area that
+  // emit nothing are grouped, within spheres of radius cluster_radius, into clusters
+  // that send and receive light as one: a cluster far from a sender (kClusterFar of its
+  // radii) receives at one point per part, and it shoots the light its patches
+  // reflected as one sender (see Solver). 0 (either): no clusters, every patch on its
+  // own. `dynrad solve` sets them from the patch size (radiosity/settings.h); the
+  // adaptive method never uses them (it gathers every earlier shot into new elements).
+  double cluster_area = 0;
+  double cluster_radius = 0;
   // Stop when the estimated mean relative error of the written values
   // (Solver::estimate_error) falls below this (0: off). `converge` still applies as a
   // floor; when only the mesh's own error is left above the target (the unshot part is
@@ -118,6 +127,12 @@ struct SolveReport {
   std::size_t peak_resident_memory = 0;  // bytes: the process's peak (VmHWM) when the solve ended, where known
   std::uint64_t culled_receivers = 0;    // patches skipped by a shot, summed over shots (see SolveOptions::cull)
   std::uint64_t negligible_receivers = 0;  // of those, skipped for a negligible bound
+  std::size_t clusters = 0, clustered_patches = 0, cluster_parts = 0;  // see SolveOptions::cluster_area
+  std::uint64_t cluster_receptions = 0;  // clusters that received a shot as one, summed over shots
+  std::uint64_t cluster_openings = 0;    // clusters whose patches received a shot one by one
+  // Receivers (patches on their own and clusters) that a shot's tree tests found hidden
+  // from its sender (radiosity/receiver_tree.h), summed over shots, and the tests.
+  std::uint64_t hidden_receivers = 0, visibility_tests = 0;
   double negligible_share_max = 0;       // the largest bound on the power skipped in one shot
   EnergyBalance energy;
   ErrorEstimate estimated_error;  // when the solve ended

@@ -117,6 +117,8 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
                                      std::llround(patch.normal[2] * 1e9)};
     patch.plane = planes.emplace(k, static_cast<std::uint32_t>(planes.size())).first->second;
   }
+  build_clusters();
+  build_tree();
   survey_patches();
   // Every existing element starts at its patch's emission.
   value_.resize(hierarchy_.element_count());
@@ -136,35 +138,63 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
 Solver::~Solver() = default;
 
 void Solver::survey_patches() {
-  // An open scene (some light has left it): the patches holding unshot light learn
+  // An open scene (some light has left it): the senders holding unshot light learn
   // what share of it will leave too (lost_fraction, which their shots need anyway), so
   // that ambient() does not count light that is on its way out.
   const bool open = sum(report_.energy.escaped) > 0;
   if (open) {
     std::vector<std::uint32_t> unknown;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p)
+    for (std::uint32_t p : standalone_)
       if (patches_[p].lost < 0 && !patches_[p].unshot.is_zero()) unknown.push_back(p);
+    for (std::uint32_t c = 0; c < clusters_.clusters.size(); ++c) {
+      if (cluster_state_[c].lost >= 0) continue;
+      const auto& cl = clusters_.clusters[c];
+      bool holds = false;
+      for (std::uint32_t k = cl.first_part; k < cl.first_part + cl.part_count && !holds; ++k)
+        holds = !part_unshot_[k].is_zero();
+      if (holds) unknown.push_back(cluster_sender(c));
+    }
     tbb::parallel_for(std::size_t(0), unknown.size(), [&](std::size_t n) { lost_fraction(unknown[n]); });
   }
-  // A deterministic reduction: the same blocks, joined in the same order, for any
-  // number of threads, so the sums are too. Ties go to the lower patch index.
+  // A deterministic reduction over the senders (patches on their own, then clusters):
+  // the same blocks, joined in the same order, for any number of threads, so the sums
+  // are too. Ties go to the lower index.
   struct Survey {
     Rgb unshot, staying;
     double magnitude = 0, best_power = -1;
     std::uint32_t best = 0;
   };
+  const std::size_t standalone = standalone_.size();
+  const std::size_t count = standalone + clusters_.clusters.size();
   const Survey total = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(patches_.size()), 2048), Survey{},
-      [&](const tbb::blocked_range<std::uint32_t>& range, Survey s) {
-        for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
-          const Patch& patch = patches_[p];
-          s.unshot += patch.unshot * patch.area;
-          s.staying += patch.unshot * (patch.area * (open && patch.lost >= 0 ? 1 - patch.lost : 1.0));
-          const double power = magnitude(patch.unshot) * patch.area;
-          s.magnitude += power;
-          if (power > s.best_power) {
-            s.best = p;
-            s.best_power = power;
+      tbb::blocked_range<std::size_t>(0, count, 2048), Survey{},
+      [&](const tbb::blocked_range<std::size_t>& range, Survey s) {
+        for (std::size_t n = range.begin(); n < range.end(); ++n) {
+          Rgb power;
+          double lost = -1, magnitude_now = 0;
+          std::uint32_t id = 0;
+          if (n < standalone) {
+            id = standalone_[n];
+            const Patch& patch = patches_[id];
+            power = patch.unshot * patch.area;
+            magnitude_now = magnitude(patch.unshot) * patch.area;
+            lost = patch.lost;
+          } else {
+            const std::uint32_t c = static_cast<std::uint32_t>(n - standalone);
+            const auto& cl = clusters_.clusters[c];
+            for (std::uint32_t k = cl.first_part; k < cl.first_part + cl.part_count; ++k) {
+              power += part_unshot_[k];
+              magnitude_now += magnitude(part_unshot_[k]);
+            }
+            id = cluster_sender(c);
+            lost = cluster_state_[c].lost;
+          }
+          s.unshot += power;
+          s.staying += power * (open && lost >= 0 ? 1 - lost : 1.0);
+          s.magnitude += magnitude_now;
+          if (magnitude_now > s.best_power) {
+            s.best = id;
+            s.best_power = magnitude_now;
           }
         }
         return s;
@@ -240,104 +270,6 @@ Rgb Solver::ambient() const {
              unshot.b / area * factor(mean_reflectance.b));
 }
 
-void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
-  const bool from_luminaire = is_luminaire(i);
-  const Patch& sender = patches_[from_luminaire ? 0 : i];
-  const double per_patch = options_.negligible_share / static_cast<double>(patches_.size());
-  // A luminaire: the points that emit (its position, or its opening's corners) and a
-  // bound on the share of its flux a patch of area A at distance d can receive,
-  // I_peak A / (d^2 flux).
-  std::vector<Vec3d> source_points;
-  double source_radius = 0, share_per_solid_angle = 0;
-  if (from_luminaire) {
-    const Luminaire& l = luminaire(i);
-    source_points.push_back(l.position);
-    const double hl = 0.5 * l.opening_length(), hw = 0.5 * l.opening_width();
-    if (hl > 0 || hw > 0)
-      for (double a : {-hl, hl})
-        for (double b : {-hw, hw}) source_points.push_back(l.position + l.c0 * a + l.c90 * b);
-    source_radius = std::sqrt(hl * hl + hw * hw);
-    const double flux = luminaire_flux_[i - patches_.size()];
-    share_per_solid_angle = flux > 0 ? l.peak_intensity() / flux : 0.0;
-  }
-  auto in_front = [](const Patch& plane_of, const Patch& other) {
-    for (const Vec3d& c : other.corners)
-      if (OpenMesh::dot(plane_of.normal, c - plane_of.corners[0]) > 0) return true;
-    return false;
-  };
-  // Per patch, in parallel: kept (-1), culled exactly (-2), or the bound it was
-  // skipped for (>= 0). The roots and the sums follow in patch order.
-  // The form factors at the corners of every kept patch are computed in the same pass
-  // (the walk's first level), which saves a parallel region per shot.
-  std::vector<double>& verdict = cull_verdict_;
-  verdict.assign(patches_.size(), -1.0);
-  tbb::parallel_for(std::uint32_t(0), static_cast<std::uint32_t>(patches_.size()), [&](std::uint32_t j) {
-    if (j == i) return;
-    if (from_luminaire && luminaire(i).directional()) {
-      // The sky reaches any patch that faces some of it; the sun only those facing it.
-      const Luminaire& l = luminaire(i);
-      if (options_.cull && l.kind == Luminaire::Kind::sun && OpenMesh::dot(patches_[j].normal, l.daylight->sun) <= 0)
-        verdict[j] = -2.0;
-      return;
-    }
-    if (options_.cull && from_luminaire) {
-      const Patch& receiver = patches_[j];
-      // Exact: every point of the source is behind or on the receiver's plane.
-      bool seen = false;
-      for (const Vec3d& p : source_points) seen = seen || OpenMesh::dot(receiver.normal, p - receiver.corners[0]) > 0;
-      if (!seen) {
-        verdict[j] = -2.0;
-        return;
-      }
-      const double d = (receiver.centre - source_points[0]).norm() - receiver.radius - source_radius;
-      if (per_patch > 0 && d > 0) {
-        const double bound = share_per_solid_angle * receiver.area / (d * d);
-        if (bound < per_patch) {
-          verdict[j] = bound;
-          return;
-        }
-      }
-    } else if (options_.cull) {
-      const Patch& receiver = patches_[j];
-      // Exact: every point of the receiver is behind or on the sender's plane (the
-      // sender sends nothing there), or the whole sender is behind or on the receiver's
-      // plane (the receiver's hemisphere does not hold it). Both give F = 0 at every
-      // point, which is what point_to_polygon would compute.
-      if (!in_front(sender, receiver) || !in_front(receiver, sender)) {
-        verdict[j] = -2.0;
-        return;
-      }
-      // Negligible: at any point x of the receiver, F(x -> sender) <= A_i / (pi d^2),
-      // with d no more than the distance between the two patches, so the receiver's
-      // share of the shot's power, A_j F_avg / A_i, is at most A_j / (pi d^2) (times
-      // the largest weight of a shaped sender's parts).
-      const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
-      if (per_patch > 0 && d > 0) {
-        const double bound = shape_.max_weight * receiver.area / (M_PI * d * d);
-        if (bound < per_patch) {
-          verdict[j] = bound;
-          return;
-        }
-      }
-    }
-    compute_corner_form_factors(hierarchy_.patch_root(j));
-  });
-  double skipped_share = 0;
-  for (std::uint32_t j = 0; j < patches_.size(); ++j) {
-    if (j == i) continue;
-    if (verdict[j] == -1.0) {
-      roots.push_back(hierarchy_.patch_root(j));
-      continue;
-    }
-    ++report_.culled_receivers;
-    if (verdict[j] >= 0) {
-      skipped_share += verdict[j];
-      ++report_.negligible_receivers;
-    }
-  }
-  report_.negligible_share_max = std::max(report_.negligible_share_max, skipped_share);
-}
-
 double Solver::unshot_fraction() const { return unshot_magnitude_ / emitted_total_; }
 
 // Fraction of the power patch `id` shoots that reaches no front face (it leaves the
@@ -358,24 +290,37 @@ double Solver::lost_fraction(std::uint32_t id) {
     }
     return luminaire_lost_[k];
   }
+  if (is_cluster(id)) return cluster_lost_fraction(cluster_index(id));
   Patch& p = patches_[id];
   if (p.lost >= 0) return p.lost;
-  const Vec3d n = p.normal;
-  const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
-  const Vec3d b = OpenMesh::cross(n, t);
+  const std::uint64_t seed = options_.seed ^ mix(0xE5CA9E000000ull + id);
+  const auto counts = escape_counts(seed, [&p](std::uint64_t& state, Vec3d& origin, Vec3d& normal) {
+    const double u = uniform(state), v = uniform(state);
+    origin = point_on_triangle(p.corners, u, v);
+    normal = p.normal;
+  });
+  p.escaped = counts[0];
+  p.lost = counts[1];
+  return p.lost;
+}
+
+std::array<double, 2> Solver::escape_counts(std::uint64_t seed, const EscapeOrigin& origin) const {
   // side x side strata; one row per task, each row with its own seed: the counts are
   // the same for any number of threads.
   auto cast = [&](int side, std::uint64_t pass) {
     std::vector<std::array<int, 2>> rows(static_cast<std::size_t>(side));
     tbb::parallel_for(0, side, [&](int i) {
-      Rng rng{mix(options_.seed ^ mix(0xE5CA9E000000ull + id) ^ mix(static_cast<std::uint64_t>(i) + 1) ^ pass)};
+      Rng rng{mix(seed ^ mix(static_cast<std::uint64_t>(i) + 1) ^ pass)};
       int escaped = 0, back = 0;
       for (int j = 0; j < side; ++j) {
         const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
+        Vec3d from, n;
+        origin(rng.state, from, n);
+        const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
+        const Vec3d b = OpenMesh::cross(n, t);
         const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
         const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
-        const Vec3d origin = point_on_triangle(p.corners, rng.uniform(), rng.uniform());
-        const auto hit = visibility_->trace(origin, n, dir);
+        const auto hit = visibility_->trace(from, n, dir);
         escaped += hit == Visibility::Hit::nothing;
         back += hit == Visibility::Hit::back;
       }
@@ -391,13 +336,11 @@ double Solver::lost_fraction(std::uint32_t id) {
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
   if (side >= 4) {
     const auto [escaped, back] = cast(side / 2, 0x9A55ull << 40);
-    if (escaped + back == 0) return p.escaped = p.lost = 0.0;
+    if (escaped + back == 0) return {0.0, 0.0};
   }
   const auto [escaped, back] = cast(side, 0);
   const double total = static_cast<double>(side) * side;
-  p.escaped = escaped / total;
-  p.lost = (escaped + back) / total;
-  return p.lost;
+  return {escaped / total, (escaped + back) / total};
 }
 
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
@@ -495,14 +438,19 @@ double Solver::luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32
 
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
                                  double* unoccluded) const {
+  return point_form_factor_keyed(static_cast<std::uint64_t>(v.idx()), x, normal, sender_id, unoccluded);
+}
+
+double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
+                                       double* unoccluded) const {
   if (is_luminaire(sender_id)) {
     double open = 0;
-    const double seen = luminaire_illuminance(
-        x, normal, sender_id, mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id)),
-        true, &open);
+    const double seen =
+        luminaire_illuminance(x, normal, sender_id, mix(options_.seed ^ mix((key << 32) ^ sender_id)), true, &open);
     if (unoccluded) *unoccluded = open;
     return seen;
   }
+  if (is_cluster(sender_id)) return cluster_form_factor(x, normal, key, true, unoccluded);
   const Patch& sender = patches_[sender_id];
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
@@ -510,7 +458,7 @@ double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& no
   if (unoccluded) *unoccluded = f;
   if (f <= 0) return 0.0;
   // Visible fraction: a few rays first; more only where those disagree.
-  Rng rng{mix(options_.seed ^ mix((static_cast<std::uint64_t>(v.idx()) << 32) ^ sender_id))};
+  Rng rng{mix(options_.seed ^ mix((key << 32) ^ sender_id))};
   int visible = 0, cast = 0;
   Vec3d targets[256];
   // Targets behind (or on) the receiver's plane are left out: the closed form has
@@ -597,6 +545,7 @@ double Solver::element_form_factor(ElementId q) const {
 
 double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   if (is_luminaire(sender_)) return luminaire_illuminance(x, n, sender_, 0, false, nullptr);
+  if (is_cluster(sender_)) return cluster_form_factor(x, n, 0, false, nullptr);
   const Patch& sender = patches_[sender_];
   if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius)
     return point_to_quartered_triangle(x, n, sender.corners.data(), shape_.weight.data(), sender.normal);
@@ -688,7 +637,7 @@ double Solver::element_reach(ElementId q) const {
 
 void Solver::midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const {
   const Element& el = hierarchy_.element(q);
-  if (is_luminaire(sender_)) {  // the exact illuminance costs no more than a far-field form
+  if (is_luminaire(sender_) || is_cluster(sender_)) {  // the exact form costs no more than a far-field one
     const Vec3d& n = hierarchy_.normal(q);
     const Vec3d centroid = hierarchy_.centroid(q);
     for (int k = 0; k < 3; ++k) {
@@ -935,6 +884,7 @@ void Solver::flush(ElementId q) {
 }
 
 void Solver::flush_all() {
+  flush_clusters();
   std::vector<ElementId> stack;
   for (std::uint32_t p = 0; p < patches_.size(); ++p) stack.push_back(hierarchy_.patch_root(p));
   while (!stack.empty()) {
@@ -951,12 +901,23 @@ void Solver::flush_all() {
 void Solver::account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
                                std::uint32_t sender_id, const Rgb& shot_radiosity) {
   const double lost = lost_fraction(sender_id);
-  // What one unit of the shot carries: a patch's area, a luminaire's flux.
+  // What one unit of the shot carries: a patch's area, a luminaire's flux; a cluster
+  // shoots its power itself.
   const bool from_luminaire = is_luminaire(sender_id);
-  const double power = from_luminaire ? luminaire_flux_[sender_id - patches_.size()] : patches_[sender_id].area;
-  const double escaped = from_luminaire ? luminaire_escaped_[sender_id - patches_.size()] : patches_[sender_id].escaped;
+  const bool from_cluster = is_cluster(sender_id);
+  const double power = from_luminaire  ? luminaire_flux_[sender_id - patches_.size()]
+                       : from_cluster ? 1.0
+                                      : patches_[sender_id].area;
+  const double escaped = from_luminaire  ? luminaire_escaped_[sender_id - patches_.size()]
+                         : from_cluster ? cluster_state_[cluster_index(sender_id)].escaped
+                                        : patches_[sender_id].escaped;
   double received = 0;
   for (double r : reach) received += r;  // in order: the same total for any number of threads
+  for (std::uint32_t c : whole_clusters_) {
+    const auto& cl = clusters_.clusters[c];
+    for (std::uint32_t k = cl.first_part; k < cl.first_part + cl.part_count; ++k)
+      received += clusters_.parts[k].area * part_form_factor_[k];
+  }
   const double reachable = power * (1 - lost);
   double scale = 0;
   if (received > 0 && reachable > 0) {
@@ -971,7 +932,10 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
     Patch& receiver = patches_[patch_id];
     const Rgb incident = shot_radiosity * (patch_reach * scale);
     const Rgb reflected = receiver.reflectance * incident;
-    receiver.unshot += reflected * (1.0 / receiver.area);  // eq. 3: area-weighted pull-up
+    if (receiver.clustered)  // its cluster sends it, with its part
+      part_unshot_[clusters_.part_of_patch[patch_id]] += reflected;
+    else
+      receiver.unshot += reflected * (1.0 / receiver.area);  // eq. 3: area-weighted pull-up
     report_.energy.absorbed += incident - reflected;
     incident_total += incident;
   };
@@ -988,6 +952,22 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
     run_reach += reach[t];
   }
   book(run_patch, run_reach);
+  // Clusters received as one: each part takes its share; its patches get the light when
+  // the cluster is flushed (flush_cluster).
+  for (std::uint32_t c : whole_clusters_) {
+    const auto& cl = clusters_.clusters[c];
+    for (std::uint32_t k = cl.first_part; k < cl.first_part + cl.part_count; ++k) {
+      const double f = part_form_factor_[k];
+      if (!(f > 0)) continue;
+      const Rgb incident = shot_radiosity * (clusters_.parts[k].area * f * scale);
+      const Rgb reflected = part_reflectance_area_[k] * shot_radiosity * (f * scale);
+      part_unshot_[k] += reflected;
+      report_.energy.absorbed += incident - reflected;
+      incident_total += incident;
+      part_pending_[k] += shot_radiosity * f;
+      cluster_state_[c].dirty = true;
+    }
+  }
   // What no front face received: out of the scene, or onto black back faces. In a
   // closed scene only rounding is left; it is booked as absorbed.
   const Rgb not_received = shot_radiosity * power - incident_total;

@@ -13,17 +13,20 @@
 // patch.
 #pragma once
 
+#include "mesh/face_clusters.h"
 #include "mesh/refinement.h"
 #include "mesh/vertex_split.h"
 #include "radiosity/grow_array.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/oracle.h"
+#include "radiosity/receiver_tree.h"
 #include "radiosity/solve_types.h"
 #include "radiosity/vertex_plane_map.h"
 #include "radiosity/visibility.h"
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -145,9 +148,19 @@ class Solver {
   std::chrono::steady_clock::time_point shot_start_;
   std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
 
-  // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1.
-  bool is_luminaire(std::uint32_t id) const { return id >= patches_.size(); }
+  // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1, clusters P + L ..
+  // P + L + C - 1.
+  bool is_luminaire(std::uint32_t id) const {
+    return id >= patches_.size() && id < patches_.size() + luminaires_.size();
+  }
   const Luminaire& luminaire(std::uint32_t id) const { return luminaires_[id - patches_.size()]; }
+  bool is_cluster(std::uint32_t id) const { return id >= patches_.size() + luminaires_.size(); }
+  std::uint32_t cluster_sender(std::uint32_t cluster) const {
+    return static_cast<std::uint32_t>(patches_.size() + luminaires_.size()) + cluster;
+  }
+  std::uint32_t cluster_index(std::uint32_t id) const {
+    return id - static_cast<std::uint32_t>(patches_.size() + luminaires_.size());
+  }
   // The flux a sky or sun luminaire sends onto the patches (see solver.cpp).
   double daylight_flux(const Luminaire& l) const;
   // Illuminance at x (normal n) from luminaire `id` per unit of its colour: see
@@ -169,6 +182,9 @@ class Solver {
     // Luminance at the patch's corners and edge midpoints (see shape_sender()) that is
     // not unshot: the values there minus this are the shape of its unshot radiosity.
     std::array<double, 6> shot_at_nodes{};
+    // A member of a face cluster: it sends nothing of its own (its reflected light goes
+    // to its part of the cluster) and is not refined.
+    bool clustered = false;
   };
 
   std::uint32_t brightest_patch() const { return brightest_; }
@@ -183,6 +199,11 @@ class Solver {
   // False once a limit of RefineSettings is reached; says so in the report, once.
   bool refinement_allowed();
   double lost_fraction(std::uint32_t patch);
+  // The shares of cosine-weighted rays (SolveOptions::escape_rays of them, stratified)
+  // that meet nothing and that meet nothing or a back face, from the points and
+  // normals `origin` draws (from the random state it is given), seeded by `seed`.
+  using EscapeOrigin = std::function<void(std::uint64_t& state, Vec3d& origin, Vec3d& normal)>;
+  std::array<double, 2> escape_counts(std::uint64_t seed, const EscapeOrigin& origin) const;
   // Form factors at the corners of `elements` for the current sender, computed in
   // parallel for every receiver not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
@@ -301,6 +322,65 @@ class Solver {
     }
   };
   std::vector<WalkChunk> walk_chunks_;
+
+  // Face clusters (SolveOptions::cluster_area; solver_clusters.cpp). A cluster far from
+  // the sender (kClusterFar of its radii from the sender's bounding sphere, or the sky)
+  // receives as one: the form factor at each part's point (its normal, the usual
+  // rays), given to every patch of the part (constant over each patch, pushed down to
+  // whatever closure split below it); otherwise it is opened and its patches receive
+  // as any patch does. Either way, the light they reflect joins their part's unshot
+  // power. A cluster sends that power as one sender: each part a disc of its area at
+  // its point (Wallace et al. 1989's A cos cos / (pi r^2 + A), which stays finite near),
+  // weighted by its share of the power; the fraction of seeded rays to parts picked in
+  // proportion to their terms that arrive gives visibility, as a patch's rays do.
+  static constexpr double kClusterFar = 4.0;
+  FaceClusters clusters_;
+  std::vector<std::uint32_t> standalone_;  // patches in no cluster, in id order
+  struct ClusterState {
+    double lost = -1, escaped = 0;  // as Patch::lost and escaped
+    bool dirty = false;             // parts hold pending light for its patches
+  };
+  std::vector<ClusterState> cluster_state_;
+  std::vector<Rgb> part_unshot_;      // power (W) its patches reflected, not yet shot
+  std::vector<Rgb> part_pending_;     // shot x F received as one, not yet given to its patches
+  std::vector<Rgb> part_reflectance_area_;  // sum over its patches of reflectance x area
+  std::vector<double> part_form_factor_;    // this shot's, for clusters received as one
+  // The current cluster sender's parts: share of its power (luminance), point, normal.
+  struct SenderPart {
+    Vec3d point, normal;
+    double area = 0, share = 0;
+  };
+  std::vector<SenderPart> sender_parts_;
+  double sender_cluster_radius_ = 0;
+  Vec3d sender_cluster_centre_;
+  // Clusters this shot receives as one, and the ones it opens.
+  std::vector<std::uint32_t> whole_clusters_;
+  void build_clusters();
+  // Over the patches on their own and the clusters (items 0 .. S - 1: standalone_,
+  // then the clusters), for culling what a sender cannot see (receiver_tree.h).
+  ReceiverTree tree_;
+  void build_tree();
+  // The receivers the current sender may see: patches on their own (in id order) and
+  // clusters (in index order), through the tree's tests.
+  void visible_receivers(std::vector<std::uint32_t>& patches, std::vector<std::uint32_t>& clusters);
+  ReceiverTree::Seen test_node(std::uint32_t node) const;
+  bool sender_near(const Bounds& box) const;
+  // What the cluster does in this shot: 0 culled, 1 received as one, 2 opened.
+  int cluster_verdict(std::uint32_t cluster) const;
+  // Form factors at the parts of cluster c for the current sender.
+  void receive_cluster(std::uint32_t cluster);
+  // Gives the parts' pending light to the cluster's patches.
+  void flush_cluster(std::uint32_t cluster);
+  void flush_clusters();
+  // Makes cluster c the current sender; returns the power it shoots.
+  Rgb start_cluster_shot(std::uint32_t cluster);
+  // F from point x (normal n) to the current cluster sender: unoccluded closed form, and
+  // with rays (seeded by `key`) when `rays`.
+  double cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t key, bool rays, double* unoccluded) const;
+  double cluster_lost_fraction(std::uint32_t cluster);
+  // The form factor at a point with its own seed key (a vertex's index, or a part's).
+  double point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
+                                 double* unoccluded) const;
   static constexpr std::size_t kChunks = 256;  // per level, at most
 
   SceneMesh& scene_;
@@ -355,7 +435,10 @@ class Solver {
   Rgb reflectance_area_;  // sum over patches of reflectance x area
   double unshot_magnitude_ = 0;
   Rgb unshot_staying_;  // unshot power that will not leave the scene (see survey_patches())  // sum over patches of |unshot| x area, all channels
-  std::vector<double> cull_verdict_;  // receiving_patches(): per patch, kept for its buffer
+  std::vector<double> cull_verdict_;  // receiving_patches(): per candidate, kept for its buffer
+  std::vector<std::uint32_t> candidates_;  // receiving_patches(): patches judged one by one
+  std::vector<int> cluster_verdict_;       // receiving_patches(): per cluster seen
+  std::vector<std::uint32_t> seen_clusters_;  // receiving_patches(): clusters the tree kept
   std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
   double form_factor_error_sum_ = 0;
   SolveReport report_;

@@ -61,6 +61,7 @@ struct SolveCliOptions {
   std::size_t max_elements = 0;
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
+  bool clusters = true;
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
@@ -244,6 +245,7 @@ int run_solve(SolveCliOptions& options) {
   request.pushdown = options.pushdown;
   request.pushdown_floor = options.pushdown_floor;
   request.memory_budget_mib = options.memory_budget_mb;
+  request.clusters = options.clusters;
   const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options.solve);
   const rad::ChosenSettings& chosen = applied.chosen;
   const double patch_size = applied.patch_size;
@@ -411,6 +413,13 @@ int run_solve(SolveCliOptions& options) {
     j["refinement_stopped_at"] = report.refinement_stopped_at;
     j["peak_resident_memory"] = report.peak_resident_memory;
     j["culled_receivers"] = report.culled_receivers;
+    j["clusters"] = {{"clusters", report.clusters},
+                     {"patches", report.clustered_patches},
+                     {"parts", report.cluster_parts},
+                     {"received_as_one", report.cluster_receptions},
+                     {"opened", report.cluster_openings}};
+    j["hidden_receivers"] = report.hidden_receivers;
+    j["visibility_tests"] = report.visibility_tests;
     j["negligible_receivers"] = report.negligible_receivers;
     j["negligible_share_max"] = report.negligible_share_max;
     j["ambient_display"] = options.solve.ambient_display;
@@ -549,6 +558,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
                    "corners and edge midpoints");
+  command->add_flag("!--no-clusters", options->clusters,
+                    "Solve every small patch on its own instead of grouping small patches (frames, handles, "
+                    "furniture parts) into face clusters that send and receive light as one");
   command->add_flag("--ambient,!--no-ambient", options->ambient,
                    "Add (the default) or leave out the ambient estimate of light not yet shot in the written values "
                    "(Cohen et al. 1988)");

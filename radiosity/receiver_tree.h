@@ -1,0 +1,85 @@
+// A bounding-volume tree over a shot's possible receivers (patches on their own and
+// face clusters), for culling what a sender cannot see before any form factor is
+// computed.
+//
+// A shot from a wall of one room reaches that room and what its doors and windows
+// show; the other rooms, storeys and the outside of the building are behind walls.
+// Cells and portals (Teller & Hanrahan 1993) find that from rooms; this finds it from
+// the geometry alone, as hierarchical radiosity's cluster links do: a node of the tree
+// far enough from the sender is tested with a few rays from points on its receivers
+// to the sender, and a node none of whose facing points sees the sender is culled
+// with everything below it. A node whose points all see the sender is taken whole
+// (its children are not tested again); one that is partly seen is opened and its
+// children are tested in turn. Small nodes (fewer than kMinTested receivers) and nodes
+// near the sender are never tested: their receivers' own rays decide.
+//
+// A test can miss what a node shows through a gap narrower than its points are apart
+// (a node of which a twentieth is seen, through a door, is culled by 32 points with a
+// chance of about a fifth): the shot's power then goes to the receivers that were
+// kept (the shot's normalisation, see shoot.cpp), so energy is kept and the error is
+// local to a node that receives little of this sender anyway.
+#pragma once
+
+#include "mesh/types.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace dynrad::rad {
+
+class ReceiverTree {
+ public:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+  static constexpr std::uint32_t kMinTested = 48;   // receivers below a node worth a test
+  static constexpr std::uint32_t kSamples = 32;     // points per tested node
+  static constexpr std::uint32_t kLeafSize = 8;
+
+  // A point on a receiver's surface with its normal and the area it stands for.
+  struct Piece {
+    Vec3d point, normal;
+    double area = 0;
+  };
+  struct Item {
+    Bounds bounds;
+    std::vector<Piece> pieces;
+  };
+  struct Node {
+    Bounds bounds;
+    std::uint32_t first = 0, count = 0;  // into order()
+    std::uint32_t children[2] = {kNone, kNone};
+    std::uint32_t first_sample = 0, sample_count = 0;
+    bool leaf() const { return children[0] == kNone; }
+  };
+
+  ReceiverTree() = default;
+  explicit ReceiverTree(const std::vector<Item>& items);
+
+  bool empty() const { return nodes_.empty(); }
+  const Node& node(std::uint32_t n) const { return nodes_[n]; }
+  const Piece& sample(std::uint32_t s) const { return samples_[s]; }
+  // Items in tree order: node n holds order()[first .. first + count).
+  const std::vector<std::uint32_t>& order() const { return order_; }
+
+  // What a test said of a node.
+  enum class Seen { hidden, partly, wholly, untested };
+  // The items a sender may reach, in tree order. `near(bounds)`: the sender is near or
+  // inside the box (no test). `test(node)`: counts the node's facing samples that see
+  // the sender (called in parallel, must be thread-safe and deterministic per node).
+  struct Visit {
+    std::vector<std::uint32_t> items;
+    std::size_t culled_nodes = 0, culled_items = 0, tests = 0;
+  };
+  Visit visit(const std::function<bool(const Bounds&)>& near,
+              const std::function<Seen(std::uint32_t node)>& test) const;
+
+ private:
+  std::uint32_t build(std::vector<std::uint32_t>& ids, std::uint32_t begin, std::uint32_t end,
+                      const std::vector<Item>& items, const std::vector<Vec3d>& centres);
+  void add_samples(Node& node, const std::vector<Item>& items);
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Piece> samples_;
+};
+
+}  // namespace dynrad::rad
