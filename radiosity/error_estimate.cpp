@@ -1,6 +1,9 @@
 // Solver::estimate_error (see solver.h).
 #include "radiosity/solver.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <cmath>
 
 namespace dynrad::rad {
@@ -9,30 +12,45 @@ ErrorEstimate Solver::estimate_error() {
   flush_all();  // every leaf holds what was pushed down above it
   const Rgb ambient_now = ambient();
   const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
-  double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
-  for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
-    const Element& el = hierarchy_.element(e);
-    if (!el.is_leaf()) continue;
-    const Patch& patch = patches_[el.patch];
-    if (!(patch.reflectance.luminance() > 0)) continue;  // its value is its emission, exact
-    const double ambient_here = (patch.reflectance * ambient_now).luminance();
-    const auto& v = value_[e];
-    const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
-    radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
-    unshot_area += el.area * ambient_here * unshot_weight;
-    if (el.parent == kNoElement) continue;
-    const Element& parent = hierarchy_.element(el.parent);
-    for (int k = 0; k < 3; ++k) {
-      const VertexHandle c = el.corners[k];
-      if (c == parent.corners[0] || c == parent.corners[1] || c == parent.corners[2]) continue;
-      const Rgb interpolated = interpolate(el.parent, value_[el.parent], hierarchy_.position(c));
-      surplus_area += el.area * std::abs(v[k].luminance() - interpolated.luminance());
-    }
-  }
+  struct Sums {
+    double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
+  };
+  // A deterministic reduction: the same blocks, joined in the same order, for any
+  // number of threads.
+  const Sums sums = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<ElementId>(0, static_cast<ElementId>(hierarchy_.element_count()), 4096), Sums{},
+      [&](const tbb::blocked_range<ElementId>& range, Sums s) {
+        for (ElementId e = range.begin(); e < range.end(); ++e) {
+          const Element& el = hierarchy_.element(e);
+          if (!el.is_leaf()) continue;
+          const Patch& patch = patches_[el.patch];
+          if (!(patch.reflectance.luminance() > 0)) continue;  // its value is its emission, exact
+          const double ambient_here = (patch.reflectance * ambient_now).luminance();
+          const auto& v = value_[e];
+          const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
+          s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
+          s.unshot_area += el.area * ambient_here * unshot_weight;
+          if (el.parent == kNoElement) continue;
+          const Element& parent = hierarchy_.element(el.parent);
+          for (int k = 0; k < 3; ++k) {
+            const VertexHandle c = el.corners[k];
+            if (c == parent.corners[0] || c == parent.corners[1] || c == parent.corners[2]) continue;
+            const Rgb interpolated = interpolate(el.parent, value_[el.parent], hierarchy_.position(c));
+            s.surplus_area += el.area * std::abs(v[k].luminance() - interpolated.luminance());
+          }
+        }
+        return s;
+      },
+      [](Sums a, const Sums& b) {
+        a.radiosity_area += b.radiosity_area;
+        a.unshot_area += b.unshot_area;
+        a.surplus_area += b.surplus_area;
+        return a;
+      });
   ErrorEstimate out;
-  if (radiosity_area > 0) {
-    out.unshot = unshot_area / radiosity_area;
-    out.discretisation = 0.5 * surplus_area / radiosity_area;
+  if (sums.radiosity_area > 0) {
+    out.unshot = sums.unshot_area / sums.radiosity_area;
+    out.discretisation = 0.5 * sums.surplus_area / sums.radiosity_area;
   }
   return out;
 }

@@ -183,7 +183,8 @@ bool Solver::shoot_once() {
         }
         // Dynamic refines deeper where a shadow's edge crosses q (RefineSettings::shadow_levels).
         const bool deeper = refine_.method == Method::dynamic && refine_.shadow_levels > 0 &&
-                            el.generation >= max_generation && shadow_crosses(q);
+                            el.generation >= max_generation && shadow_crosses(q) &&
+                            !shadow_resolved(q);
         // (the patches of face clusters are not refined: they are small already)
         const bool can_split =
             !patch.clustered && el.generation < max_generation + (deeper ? 2 * refine_.shadow_levels : 0);

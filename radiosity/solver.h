@@ -411,6 +411,13 @@ class Solver {
   // A shadow's edge crosses q: its corners see fractions of the sender that differ by
   // more than a quarter (see RefineSettings::shadow_levels).
   bool shadow_crosses(ElementId q) const;
+  // A point-like luminaire's shadow edge across q is drawn finely enough: q's longest
+  // edge is below kShadowResolution of its distance from the luminaire (the outline is
+  // then placed to within that angle as seen from the light: 2 cm on a floor 2 m below
+  // a lamp). Refining further would cut a hard edge that never becomes smooth into
+  // ever smaller pieces along the whole outline of every chair leg and frame.
+  bool shadow_resolved(ElementId q) const;
+  static constexpr double kShadowResolution = 0.01;
   struct Receiver {
     VertexHandle vertex;
     std::uint32_t patch;  // of the first element that has it (its facing is the receiver's)
