@@ -94,6 +94,7 @@ AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& re
   refine.memory_budget = request.memory_budget_mib >= 0
                              ? static_cast<std::size_t>(request.memory_budget_mib * 1024 * 1024)
                              : c.memory_budget;
+  refine.patch_area = out.patch_size * out.patch_size / 8;
   if (request.clusters && refine.method != Method::adaptive) {
     solve.cluster_area = out.patch_size * out.patch_size / 32;
     solve.cluster_radius = 0.5 * out.patch_size;

@@ -186,8 +186,11 @@ bool Solver::shoot_once() {
                             el.generation >= max_generation && shadow_crosses(q) &&
                             !shadow_resolved(q);
         // (the patches of face clusters are not refined: they are small already)
-        const bool can_split =
-            !patch.clustered && el.generation < max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
+        // No element gets smaller than the smallest a patch of the full patch size may
+        // reach (RefineSettings::patch_area): slivers and small parts are fine already.
+        const int generations = max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
+        const bool can_split = !patch.clustered && el.generation < generations &&
+                               el.area >= std::ldexp(refine_.patch_area, 1 - generations);
         const bool odd = el.generation % 2 == 1;
         // The push-down error costs three closed forms; it is estimated only where the
         // oracle's first condition (the cumulated gradient) holds and it can decide. Its

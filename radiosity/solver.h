@@ -77,6 +77,14 @@ struct RefineSettings {
   // levels bound); with 3 and a quarter, 0.29% (64,000 elements).
   int luminaire_levels = 3;
   double luminaire_pushdown = 0.25;
+  // The area of a whole patch (model units squared; 0: not used): no bisection the
+  // oracle asks for makes an element smaller than such a patch's smallest at the levels
+  // allowed. A patch smaller than that (a sliver along an imprinted line, a frame's
+  // side) then refines less or not at all: the levels count from the patch size, not
+  // from each patch. `dynrad solve` sets it to an eighth of the patch size squared:
+  // bisecting to the patch size leaves right triangles whose longest edge lies between
+  // the patch size and 1/sqrt(2) of it, so a whole patch has at least that area.
+  double patch_area = 0;
 };
 
 // Resident memory of this process in bytes (Linux /proc; 0 where unknown).
