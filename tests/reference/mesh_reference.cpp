@@ -3,15 +3,16 @@
 //
 //   mesh_reference MESH.ply --lights SCENE.json --points GRID.csv -o OUT.txt
 //                  [--target 0.003] [--seed 1] [--threads N] [--max-paths N] [--ray-offset 1e-4]
+//                  [--note TEXT]...
 //
 // MESH.ply   as `dynrad clean MODEL -o MESH.ply` writes it (reflectance per vertex)
 // SCENE.json the dynrad scene file: its "luminaires" array, point luminaires only
 // GRID.csv   a grid CSV of `dynrad solve` (x,y,z,...,masked): the rows with masked 0
 //
-// OUT.txt gets '#' header lines (command, inputs, date, seed, paths, time, the mean
-// illuminance) and one line per point: x y z E std_error E_direct E_indirect paths
-// (lx; E = E_direct + E_indirect, E_direct exact, std_error that of E_indirect, facing
-// +z). It is written to OUT.txt.tmp and renamed when complete. Progress goes to stderr.
+// OUT.txt gets '#' header lines (command, date, each --note, the inputs with their size
+// and hash, seed, paths, time, the mean illuminance) and one line per point: x y z E std_error E_direct E_indirect
+// paths (lx; E = E_direct + E_indirect, E_direct exact, std_error that of E_indirect, facing +z). It is written to
+// OUT.txt.tmp and renamed when complete. Progress goes to stderr.
 #include "reference/mesh_tracer.h"
 
 #include <nlohmann/json.hpp>
@@ -20,6 +21,8 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -41,6 +44,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 struct Args {
   std::string mesh, lights, points, output, command = "mesh_reference";
+  std::vector<std::string> notes;  // --note: lines for the header (how the inputs were made)
   mt::TraceOptions options;
 };
 
@@ -53,9 +57,13 @@ struct NamedLight {
   throw std::runtime_error(path + ": " + what);
 }
 
-std::string format(const char* pattern, double a, double b, double c) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+// printf into a std::string.
+__attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
+  char buffer[256];
+  va_list args;
+  va_start(args, pattern);
+  std::vsnprintf(buffer, sizeof buffer, pattern, args);
+  va_end(args);
   return buffer;
 }
 
@@ -169,12 +177,34 @@ std::vector<mt::Vec3> read_points(const std::string& path, std::size_t& rows) {
   return out;
 }
 
+// An argument as a shell would need it to be typed.
+std::string quoted(const std::string& arg) {
+  if (!arg.empty() && arg.find_first_of(" \t\"'\\$`*?;&|<>()") == std::string::npos) return arg;
+  std::string out = "'";
+  for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 int usage(const std::string& message) {
   std::fprintf(stderr,
                "mesh_reference: %s\nusage: mesh_reference MESH.ply --lights SCENE.json --points GRID.csv -o OUT.txt "
-               "[--target REL] [--seed N] [--threads N] [--max-paths N] [--ray-offset REL]\n",
+               "[--target REL] [--seed N] [--threads N] [--max-paths N] [--ray-offset REL] [--note TEXT]...\n",
                message.c_str());
   return 2;
+}
+
+// "N bytes, FNV-1a 64 H" of a file, so that the header identifies its inputs.
+std::string fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t hash = 0xcbf29ce484222325ULL, bytes = 0;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    const std::streamsize n = in.gcount();
+    for (std::streamsize i = 0; i < n; ++i) hash = (hash ^ static_cast<unsigned char>(buffer[i])) * 0x100000001b3ULL;
+    bytes += static_cast<std::uint64_t>(n);
+  }
+  return format("%llu bytes, FNV-1a 64 %016llx", static_cast<unsigned long long>(bytes),
+                static_cast<unsigned long long>(hash));
 }
 
 std::string utc_now() {
@@ -197,10 +227,12 @@ class Progress {
     if (!finished) return;
     ++done_;
     const mt::Vec3& p = points_[point];
-    std::fprintf(stderr,
-                 "mesh_reference: point %zu (%.3f, %.3f, %.3f) done, %zu/%zu: %.5g lx +- %.3g (%.2f%%), %lld paths\n",
-                 point, p.x, p.y, p.z, done_, points_.size(), e.value, e.std_error,
-                 e.value > 0 ? 100 * e.std_error / e.value : 0.0, static_cast<long long>(e.paths));
+    std::fprintf(
+        stderr, "mesh_reference: point %zu (%.3f, %.3f, %.3f) done, %zu/%zu: %.5g lx +- %.3g (%.2f%%), %lld paths%s\n",
+        point, p.x, p.y, p.z, done_, points_.size(), e.value, e.std_error,
+        e.value > 0 ? 100 * e.std_error / e.value : 0.0, static_cast<long long>(e.paths),
+        e.back_share > 0.1 ? format(", %.0f%% of first rays meet backs (inside a solid?)", 100 * e.back_share).c_str()
+                           : "");
   }
 
   // Every `period` until stop(): points done, paths so far, seconds.
@@ -303,15 +335,16 @@ int run(const Args& args) {
                "Lambertian front faces, backs absorb, Rec. 709 luminance of the RGB irradiance, facing +z.\n");
   std::fprintf(file, "# command: %s\n", args.command.c_str());
   std::fprintf(file, "# date: %s\n", utc_now().c_str());
-  std::fprintf(file, "# mesh: %s: %zu triangles read, %zu used (%zu of zero area left out), scene size %.4g\n",
-               args.mesh.c_str(), triangles_read, tracer.triangle_count(), tracer.degenerate_triangles(),
-               tracer.scene_size());
-  std::fprintf(file, "# lights: %s:", args.lights.c_str());
+  for (const std::string& note : args.notes) std::fprintf(file, "# %s\n", note.c_str());
+  std::fprintf(file, "# mesh: %s (%s): %zu triangles read, %zu used (%zu of zero area left out), scene size %.4g\n",
+               args.mesh.c_str(), fingerprint(args.mesh).c_str(), triangles_read, tracer.triangle_count(),
+               tracer.degenerate_triangles(), tracer.scene_size());
+  std::fprintf(file, "# lights: %s (%s):", args.lights.c_str(), fingerprint(args.lights).c_str());
   for (const NamedLight& l : lights)
     std::fprintf(file, " %s %.6g lm at %s;", l.name.c_str(), l.light.flux,
                  format("(%g, %g, %g)", l.light.position.x, l.light.position.y, l.light.position.z).c_str());
-  std::fprintf(file, "\n# points: %s: %zu of %zu rows (masked rows left out)\n", args.points.c_str(), points.size(),
-               rows);
+  std::fprintf(file, "\n# points: %s (%s): %zu of %zu rows (masked rows left out)\n", args.points.c_str(),
+               fingerprint(args.points).c_str(), points.size(), rows);
   std::fprintf(file,
                "# seed %llu, target relative standard error %g, at most %lld paths per point, %d paths per replicate "
                "(at least %d replicates), roulette below %g, ray offset %g of the scene size\n",
@@ -324,6 +357,15 @@ int run(const Args& args) {
                "# %zu points stopped at the path cap above the target error; worst relative standard error %.3g at "
                "(%g, %g, %g)\n",
                capped, worst_relative, points[worst].x, points[worst].y, points[worst].z);
+  std::string backs;
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (results[i].back_share > 0.1)
+      backs += format(" (%g, %g, %g) %.0f%%;", points[i].x, points[i].y, points[i].z, 100 * results[i].back_share);
+  if (!backs.empty())
+    std::fprintf(file,
+                 "# points whose first rays meet the backs of faces more than 10%% of the time (inside or against a "
+                 "solid: no light comes through a back):%s\n",
+                 backs.c_str());
   std::fprintf(file, "# Eavg %.6g lx, standard error %.3g lx (%.3g%%), over %zu points\n", mean, mean_error,
                100 * mean_error / mean, points.size());
   std::fprintf(file,
@@ -350,10 +392,10 @@ int main(int argc, char** argv) {
   Args args;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    args.command += " " + arg;
+    args.command += " " + quoted(arg);
     const bool has_value = i + 1 < argc;
     auto value = [&]() -> std::string {
-      args.command += std::string(" ") + argv[i + 1];
+      args.command += " " + quoted(argv[i + 1]);
       return argv[++i];
     };
     try {
@@ -371,6 +413,8 @@ int main(int argc, char** argv) {
         args.options.threads = std::stoi(value());
       } else if (arg == "--max-paths" && has_value) {
         args.options.max_paths = static_cast<std::int64_t>(std::stod(value()));
+      } else if (arg == "--note" && has_value) {
+        args.notes.push_back(value());
       } else if (arg == "--ray-offset" && has_value) {
         args.options.ray_offset = std::stod(value());
       } else if (arg.rfind("-", 0) != 0 && args.mesh.empty()) {

@@ -336,7 +336,10 @@ struct Tracer::Impl {
   // One path's estimate of the indirect illuminance (luminance of the RGB irradiance
   // without the point lights' direct part) at x0 facing unit n0. Rays from x0 start at
   // x0 itself (it is in mid-air); rays from a surface `surface_offset` in front of it.
-  double path(const Vec3& x0, const Vec3& n0, const TraceOptions& o, double surface_offset, Rng& rng) const {
+  // `first_back` is set when the first ray met the back of a face.
+  double path(const Vec3& x0, const Vec3& n0, const TraceOptions& o, double surface_offset, Rng& rng,
+              bool& first_back) const {
+    first_back = false;
     Rgb sum{}, throughput{1, 1, 1};
     Vec3 x = x0, n = n0;
     int from = -1;
@@ -353,6 +356,7 @@ struct Tracer::Impl {
       const double u0 = rng.uniform(), u1 = rng.uniform();
       const Vec3 d = cosine_direction(n, u0, u1);
       const Hit hit = first_hit(x, n, d, from, offset);
+      if (hit.prim >= 0 && !hit.front && bounce == 0) first_back = true;
       if (hit.prim < 0 || !hit.front) break;
       const Prim& p = prims[hit.prim];
       if (luminance(p.exitance) > 0) {
@@ -386,14 +390,22 @@ struct Tracer::Impl {
     result.direct = point_lights(x, n, -1, 0);
     const int per = o.paths_per_replicate;
     std::vector<double> means;
+    std::vector<std::int64_t> backs;  // per replicate: paths whose first ray met a back
     auto run_until = [&](std::size_t replicates) {
       const std::size_t first = means.size();
       means.resize(replicates);
+      backs.resize(replicates);
       parallel_for(replicates - first, threads, [&](std::size_t i) {
         Rng rng(replicate_key(key, first + i));
         double sum = 0;
-        for (int k = 0; k < per; ++k) sum += path(x, n, o, surface_offset, rng);
+        std::int64_t back_count = 0;
+        for (int k = 0; k < per; ++k) {
+          bool back = false;
+          sum += path(x, n, o, surface_offset, rng, back);
+          back_count += back;
+        }
         means[first + i] = sum / per;
+        backs[first + i] = back_count;
       });
       const double count = static_cast<double>(means.size());
       double mean = 0, spread = 0;
@@ -404,6 +416,9 @@ struct Tracer::Impl {
       result.value = result.direct + mean;
       result.std_error = std::sqrt(spread / (count - 1) / count);
       result.paths = static_cast<std::int64_t>(means.size()) * per;
+      std::int64_t back_total = 0;
+      for (std::int64_t b : backs) back_total += b;
+      result.back_share = static_cast<double>(back_total) / static_cast<double>(result.paths);
     };
     if (o.paths > 0) {
       run_until(static_cast<std::size_t>(std::max<std::int64_t>(2, (o.paths + per - 1) / per)));

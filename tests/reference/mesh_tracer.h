@@ -78,6 +78,9 @@ struct Estimate {
   double direct = 0;
   double indirect = 0;
   std::int64_t paths = 0;
+  // The share of the paths whose first ray met the back of a face: a point inside a
+  // solid (or inside a wall) sees mostly backs, and gets no light through them.
+  double back_share = 0;
 };
 
 struct TraceOptions {
