@@ -54,8 +54,7 @@ struct Shared {
   OpenMesh::FPropHandleT<std::uint32_t> label;
   // The input vertices, gone from the mesh, that this face covers.
   OpenMesh::FPropHandleT<std::vector<std::uint32_t>> remembered;
-  double distance = 0;         // how far from its plane a point may be and lie in it
-  double min_double_area = 0;  // twice the smallest area a rewired face may have
+  double distance = 0;  // how far from its plane a point may be and lie in it
   const VertexValues* values = nullptr;
   double colour_units = 0, colour_fraction = 0, quality_fraction = 0, quality_floor = 0;
 };
@@ -67,6 +66,14 @@ bool on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b, double distance)
   if (!(length2 > 0)) return false;
   const double t = OpenMesh::dot(p - a, d) / length2;
   return t > 0 && t < 1 && (p - (a + d * t)).norm() <= distance;
+}
+
+// Whether a triangle is wider than `distance` (twice its area over its longest edge): a
+// narrower one has no plane or facing to speak of at that tolerance, and the points it
+// covers could not be told from those of its neighbours.
+bool wider_than(const Vec3d& a, const Vec3d& b, const Vec3d& c, double double_area, double distance) {
+  const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+  return double_area > 0 && double_area * double_area > distance * distance * longest2;
 }
 
 bool is_border(const TriMesh& mesh, const Shared& shared, OpenMesh::EdgeHandle e) {
@@ -100,7 +107,7 @@ class ModKeepSurfaceT : public OpenMesh::Decimater::ModBaseT<MeshT> {
     if (borders != 0 && (borders != 2 || !along || !other.is_valid() ||
                          !on_segment(ci.p0, ci.p1, mesh.point(other), shared_->distance)))
       return Base::ILLEGAL_COLLAPSE;
-    // Every rewired face: v1 in its original plane, same facing, a real area.
+    // Every rewired face: v1 in its original plane, same facing, wider than the tolerance.
     for (auto h : mesh.voh_range(ci.v0)) {
       const FaceHandle f = mesh.face_handle(h);
       if (!f.is_valid() || f == ci.fl || f == ci.fr) continue;
@@ -110,7 +117,8 @@ class ModKeepSurfaceT : public OpenMesh::Decimater::ModBaseT<MeshT> {
       const Plane& plane = mesh.property(shared_->plane, f);
       if (std::abs(OpenMesh::dot(plane.normal, ci.p1) - plane.offset) > shared_->distance)
         return Base::ILLEGAL_COLLAPSE;
-      if (OpenMesh::dot(OpenMesh::cross(a - ci.p1, b - ci.p1), plane.normal) <= shared_->min_double_area)
+      if (!wider_than(ci.p1, a, b, OpenMesh::dot(OpenMesh::cross(a - ci.p1, b - ci.p1), plane.normal),
+                      shared_->distance))
         return Base::ILLEGAL_COLLAPSE;
     }
     return Base::LEGAL_COLLAPSE;
@@ -325,7 +333,6 @@ LitDecimateReport decimate(std::vector<Vec3d>& positions, std::vector<Triangle>&
 
   Shared shared;
   shared.distance = options.flatness * diagonal;
-  shared.min_double_area = 2e-14 * diagonal * diagonal;  // cleanup's degenerate-triangle rule, as simplify.cpp
   shared.values = &values;
   shared.colour_units = options.colour_units;
   shared.colour_fraction = options.colour_fraction;
@@ -339,8 +346,8 @@ LitDecimateReport decimate(std::vector<Vec3d>& positions, std::vector<Triangle>&
   report.quality_floor = shared.quality_floor;
 
   // The half-edge mesh: vertex i is input vertex i. Triangles it cannot take (a corner
-  // twice, no area, not manifold next to those before) stay as they are, and so do
-  // their corners.
+  // twice, no wider than the tolerance, not manifold next to those before) stay as they
+  // are, and so do their corners.
   TriMesh mesh;
   OpenMesh::FPropHandleT<std::uint32_t> source;  // input triangle of each face
   mesh.add_property(shared.plane);
@@ -355,7 +362,9 @@ LitDecimateReport decimate(std::vector<Vec3d>& positions, std::vector<Triangle>&
     const VertexHandle a(static_cast<int>(c[0])), b(static_cast<int>(c[1])), d(static_cast<int>(c[2]));
     const Vec3d n = OpenMesh::cross(mesh.point(b) - mesh.point(a), mesh.point(d) - mesh.point(a));
     FaceHandle f;
-    if (c[0] != c[1] && c[1] != c[2] && c[2] != c[0] && n.norm() > shared.min_double_area) f = mesh.add_face(a, b, d);
+    if (c[0] != c[1] && c[1] != c[2] && c[2] != c[0] &&
+        wider_than(mesh.point(a), mesh.point(b), mesh.point(d), n.norm(), shared.distance))
+      f = mesh.add_face(a, b, d);
     if (!f.is_valid()) {
       kept_as_they_are.push_back(static_cast<std::uint32_t>(t));
       continue;

@@ -8,7 +8,9 @@
 // - Geometry: a collapse moves a vertex onto a neighbour only where the faces around it
 //   lie in one plane (or in the two planes of a straight crease, along the crease), and
 //   a boundary vertex only along a straight boundary line. Boundaries stay where they
-//   are: the input's separate smooth regions keep meeting without gaps. No face flips.
+//   are: the input's separate smooth regions keep meeting without gaps. No face flips,
+//   and no face is made narrower than the flatness tolerance (where its plane would be
+//   lost in rounding).
 // - Values: every vertex of the input, the removed ones too, is remembered by the face
 //   of the simplified mesh that covers it. A collapse is refused if, at any of them, the
 //   colour the simplified mesh shows (the barycentric interpolation of the display
@@ -58,8 +60,8 @@ struct LitDecimateReport {
   std::size_t triangles_before = 0, triangles_after = 0;
   std::size_t vertices_before = 0, vertices_after = 0;  // after: the vertices triangles use
   std::size_t collapses = 0;
-  // Triangles the half-edge mesh could not take (degenerate, or non-manifold next to
-  // others): kept as they are, with their vertices.
+  // Triangles the half-edge mesh could not take (degenerate: no wider than `flatness`;
+  // or non-manifold next to others): kept as they are, with their vertices.
   std::size_t triangles_kept_as_they_are = 0;
   bool reached_target = false;  // triangles_after <= max_triangles
   // The largest errors over every vertex of the input, measured after decimation: in
