@@ -362,6 +362,39 @@ TEST(LitDecimate, LabelsKeepTheirRegions) {
   EXPECT_NEAR(area[1], 0.5, 1e-12);
 }
 
+// A needle strip (1e-9 wide, as rounding leaves beside a wall's edge in the IFC house)
+// beside a square, with vertices of its own: narrower than the flatness tolerance, it
+// has no plane to keep, so it is kept as it is while the square is decimated.
+TEST(LitDecimate, NeedlesAreKeptAsTheyAre) {
+  LitMesh m = square(10, [](const Vec3d&) { return std::array<double, 3>{100, 100, 100}; });
+  const auto first = static_cast<std::uint32_t>(m.positions.size());
+  const int n = 10;
+  for (int j = 0; j <= n; ++j)
+    for (int side = 0; side < 2; ++side) {
+      m.positions.push_back(Vec3d(1 + side * 1e-9, double(j) / n, 0));
+      m.values.display.push_back({static_cast<std::uint8_t>(j % 2 ? 7 : 30), 4, 1});
+      m.values.linear.push_back(Rgb(0.01));
+      m.values.quality.push_back(0.01f);
+    }
+  std::vector<Triangle> needle;
+  for (int j = 0; j < n; ++j) {
+    const std::uint32_t a = first + 2 * j, b = a + 1, c = a + 2, d = a + 3;
+    needle.push_back({a, b, d});
+    needle.push_back({a, d, c});
+  }
+  m.triangles.insert(m.triangles.end(), needle.begin(), needle.end());
+  const LitMesh input = m;
+  const LitDecimateReport r = decimate(m);
+  EXPECT_EQ(r.triangles_kept_as_they_are, needle.size());
+  EXPECT_EQ(r.triangles_after, 2 + needle.size());
+  // The needle's triangles come last, as they were (their vertices renumbered).
+  for (std::size_t k = 0; k < needle.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(m.positions[m.triangles[2 + k][c]], input.positions[needle[k][c]]) << "needle triangle " << k;
+  const Measured e = measure(input, m, {}, r.quality_floor);
+  EXPECT_EQ(e.uncovered, 0u);
+}
+
 TEST(LitDecimate, StopsAtMaxTriangles) {
   LitMesh m = square(100, spot);
   LitDecimateOptions o;
