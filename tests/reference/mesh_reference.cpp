@@ -231,8 +231,7 @@ class Progress {
         stderr, "mesh_reference: point %zu (%.3f, %.3f, %.3f) done, %zu/%zu: %.5g lx +- %.3g (%.2f%%), %lld paths%s\n",
         point, p.x, p.y, p.z, done_, points_.size(), e.value, e.std_error,
         e.value > 0 ? 100 * e.std_error / e.value : 0.0, static_cast<long long>(e.paths),
-        e.back_share > 0.1 ? format(", %.0f%% of first rays meet backs (inside a solid?)", 100 * e.back_share).c_str()
-                           : "");
+        e.back_share > 0.1 ? format(", %.0f%% of first rays meet backs of faces", 100 * e.back_share).c_str() : "");
   }
 
   // Every `period` until stop(): points done, paths so far, seconds.
@@ -364,7 +363,7 @@ int run(const Args& args) {
   if (!backs.empty())
     std::fprintf(file,
                  "# points whose first rays meet the backs of faces more than 10%% of the time (inside or against a "
-                 "solid: no light comes through a back):%s\n",
+                 "solid, or under single-sided surfaces seen from behind; backs absorb):%s\n",
                  backs.c_str());
   std::fprintf(file, "# Eavg %.6g lx, standard error %.3g lx (%.3g%%), over %zu points\n", mean, mean_error,
                100 * mean_error / mean, points.size());
