@@ -148,16 +148,51 @@ class Builder {
   std::vector<std::uint32_t> in_cluster_, assigned_;  // per patch: cluster + 1 while building
 };
 
+// Per patch, the area of its facet: the patches reached from it over shared edges
+// between patches of the same normal.
+std::vector<double> facet_areas(const ElementHierarchy& h) {
+  const TriMesh& mesh = h.scene().mesh();
+  std::vector<double> area(h.patch_count(), 0.0);
+  std::vector<std::uint32_t> facet(h.patch_count(), UINT32_MAX), stack, members;
+  for (std::uint32_t seed = 0; seed < h.patch_count(); ++seed) {
+    if (facet[seed] != UINT32_MAX) continue;
+    const Vec3d n = h.normal(h.patch_root(seed));
+    members.clear();
+    stack.assign(1, seed);
+    facet[seed] = seed;
+    double total = 0;
+    while (!stack.empty()) {
+      const std::uint32_t p = stack.back();
+      stack.pop_back();
+      members.push_back(p);
+      const Element& el = h.element(h.patch_root(p));
+      total += el.area;
+      if (!el.is_leaf()) continue;
+      for (auto he : mesh.fh_range(el.face)) {
+        const FaceHandle g = mesh.opposite_face_handle(he);
+        if (!g.is_valid()) continue;
+        const std::uint32_t q = h.element(h.element_of(g)).patch;
+        if (facet[q] != UINT32_MAX || OpenMesh::dot(h.normal(h.patch_root(q)), n) < 1 - 1e-9) continue;
+        facet[q] = seed;
+        stack.push_back(q);
+      }
+    }
+    for (std::uint32_t p : members) area[p] = total;
+  }
+  return area;
+}
+
 }  // namespace
 
 FaceClusters build_face_clusters(const ElementHierarchy& hierarchy, const FaceClusterOptions& options,
                                  const std::function<bool(std::uint32_t)>& eligible) {
   std::vector<Candidate> candidates;
   if (options.small_area > 0 && options.max_radius > 0) {
+    const std::vector<double> facet = facet_areas(hierarchy);
     for (std::uint32_t p = 0; p < hierarchy.patch_count(); ++p) {
       const ElementId root = hierarchy.patch_root(p);
       const Element& el = hierarchy.element(root);
-      if (!el.is_leaf() || !(el.area < options.small_area) || (eligible && !eligible(p))) continue;
+      if (!el.is_leaf() || !(facet[p] < options.small_area) || (eligible && !eligible(p))) continue;
       Candidate c{p, hierarchy.centroid(root), {}};
       double reach = 0;
       for (VertexHandle v : el.corners) {

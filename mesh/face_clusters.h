@@ -25,7 +25,9 @@
 namespace dynrad {
 
 struct FaceClusterOptions {
-  // Patches of less area join clusters (0: none does).
+  // Patches whose facet (the patches that touch and lie in one plane) has less area
+  // join clusters (0: none does). A wall that CAD cut into strips is one big facet and
+  // stays a set of patches of its own; a frame's profile or a chair's leg is small.
   double small_area = 0;
   // A cluster's bounding sphere has at most this radius (model units).
   double max_radius = 0;
@@ -64,8 +66,8 @@ struct FaceClusters {
   }
 };
 
-// Clusters of the patches of `hierarchy` that are smaller than options.small_area and
-// for which `eligible` holds (all, when it is empty). The hierarchy must not have been
+// Clusters of the patches of `hierarchy` whose facets are smaller than
+// options.small_area and for which `eligible` holds (all, when it is empty). The hierarchy must not have been
 // refined yet (every patch is one face). Deterministic: the same input gives the same
 // clusters, numbered in the same order.
 FaceClusters build_face_clusters(const ElementHierarchy& hierarchy, const FaceClusterOptions& options,

@@ -67,4 +67,11 @@ VertexSplit split_vertices(const SceneMesh& scene, double crease_angle_degrees) 
   return split;
 }
 
+std::vector<double> split_vertex_areas(const SceneMesh& scene, const VertexSplit& split) {
+  std::vector<double> area(split.size(), 0.0);
+  for (auto f : scene.mesh().faces())
+    for (int k = 0; k < 3; ++k) area[split.corner[3 * f.idx() + k]] += scene.area(f) / 3;
+  return area;
+}
+
 }  // namespace dynrad

@@ -22,6 +22,9 @@ struct VertexSplit {
 
 VertexSplit split_vertices(const SceneMesh& scene, double crease_angle_degrees = 30.0);
 
+// A third of the area of each face around each output vertex.
+std::vector<double> split_vertex_areas(const SceneMesh& scene, const VertexSplit& split);
+
 // Area-weighted average of a per-face value over the faces that share each output
 // vertex (the faces of one smooth, single-material fan).
 template <typename T, typename FaceValue>

@@ -7,11 +7,22 @@
 #include <cmath>
 
 namespace dynrad::rad {
+namespace {
+double sum_of(const Rgb& c) { return c.r + c.g + c.b; }
+}  // namespace
 
 ErrorEstimate Solver::estimate_error() {
   flush_all();  // every leaf holds what was pushed down above it
   const Rgb ambient_now = ambient();
   const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
+  // With over-relaxation the unshot light has both signs: the ambient term (its sum)
+  // can be near 0 while much is yet to move. Its error is then that of its magnitude.
+  Rgb ambient_error = ambient_now;
+  const double signed_total = std::abs(sum_of(report_.energy.unshot));
+  if (options_.overshoot != 1.0 && signed_total > 0) {
+    const double scale = unshot_magnitude_ / signed_total;
+    ambient_error = Rgb(std::abs(ambient_now.r), std::abs(ambient_now.g), std::abs(ambient_now.b)) * scale;
+  }
   struct Sums {
     double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
   };
@@ -29,7 +40,7 @@ ErrorEstimate Solver::estimate_error() {
           const auto& v = value_[e];
           const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
           s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
-          s.unshot_area += el.area * ambient_here * unshot_weight;
+          s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance() * unshot_weight;
           if (el.parent == kNoElement) continue;
           const Element& parent = hierarchy_.element(el.parent);
           for (int k = 0; k < 3; ++k) {

@@ -3,6 +3,10 @@
 // directions) draws from a seed of its own, so results do not depend on threads.
 #pragma once
 
+#include "mesh/types.h"
+
+#include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace dynrad::rad {
@@ -18,6 +22,16 @@ inline std::uint64_t mix(std::uint64_t z) {
 inline double uniform(std::uint64_t& state) {
   state = mix(state);
   return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+// Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of
+// the way off the edges: a point on an edge lies in the neighbouring face's plane, and
+// a ray from there slips out through the seam.
+inline Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v) {
+  const double s = std::sqrt(u);
+  const Vec3d p = c[0] * (1 - s) + c[1] * (s * (1 - v)) + c[2] * (s * v);
+  const Vec3d centroid = (c[0] + c[1] + c[2]) / 3.0;
+  return p + (centroid - p) * 1e-2;
 }
 
 }  // namespace dynrad::rad

@@ -96,11 +96,13 @@ AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& re
                              : c.memory_budget;
   refine.patch_area = out.patch_size * out.patch_size / 8;
   if (request.clusters && refine.method != Method::adaptive) {
-    solve.cluster_area = out.patch_size * out.patch_size / 32;
+    solve.cluster_area = out.patch_size * out.patch_size / 8;
     solve.cluster_radius = 0.5 * out.patch_size;
+    solve.group_radius = 0.75 * out.patch_size;
   } else {
-    solve.cluster_area = solve.cluster_radius = 0;
+    solve.cluster_area = solve.cluster_radius = solve.group_radius = 0;
   }
+  solve.overshoot = request.overshoot > 0 ? request.overshoot : 1.0;
   solve.error_target = 0;
   if (request.converge >= 0) {
     solve.converge = request.converge;

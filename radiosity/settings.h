@@ -59,6 +59,7 @@ struct SettingsRequest {
   double pushdown = -1, pushdown_floor = -1;
   double memory_budget_mib = -1;
   bool clusters = true;  // false: every patch on its own (SolveOptions::cluster_area 0)
+  double overshoot = -1;  // given: SolveOptions::overshoot; otherwise 1 (none)
 };
 
 struct AppliedSettings {
@@ -74,9 +75,13 @@ struct RefineSettings;  // radiosity/solver.h
 // target (SolveOptions::error_target, with converge 1e-4 as a floor); progressive
 // and adaptive keep their classic rules (a tenth of the diagonal, three levels, 1%
 // unshot). Writes refine.max_level, the push-down thresholds, refine.memory_budget,
-// solve.error_target, solve.converge and the face clusters (solve.cluster_area, a
-// 32nd of the patch size squared: an eighth of a right triangle whose longest edge is
-// the patch size; solve.cluster_radius, half the patch size; none for adaptive).
+// solve.error_target, solve.converge, solve.overshoot (1 unless asked: over-relaxation
+// reaches the error target in fewer shots only by the signed unshot light, which an
+// honest estimate does not count; see estimate_error), the face clusters
+// (solve.cluster_area, an eighth of the patch size squared: the smallest a whole patch
+// can be, for the area of a facet; solve.cluster_radius, half the patch size) and the
+// sender groups (solve.group_radius, three quarters of the patch size); neither for
+// adaptive.
 AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& request, RefineSettings& refine,
                                SolveOptions& solve);
 

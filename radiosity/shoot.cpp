@@ -78,6 +78,7 @@ bool Solver::shoot_once() {
     current_shot_ = shot;
     shape_.on = false;
     shape_.max_weight = 1;
+    sender_members_.clear();
     luminaire_unshot_ = Rgb();
     for (std::size_t m = next_luminaire_; m < luminaires_.size(); ++m)
       luminaire_unshot_ += luminaires_[m].colour * luminaire_flux_[m];
@@ -93,9 +94,22 @@ bool Solver::shoot_once() {
     current_shot_ = shot;
     shape_.on = false;
     shape_.max_weight = 1;
+    sender_members_.clear();
     const double lost = cluster_state_[cluster_index(i)].lost;
     report_.energy.unshot = report_.energy.unshot - shot;
     unshot_staying_ = unshot_staying_ - shot * (lost >= 0 ? 1 - lost : 1.0);
+  } else if (is_group(brightest_patch())) {
+    // A group of patches in one plane sends what they all hold, each its own share
+    // (see solver.h, "Sender groups").
+    i = brightest_patch();
+    sender_ = i;
+    unshot = start_group_shot(i);
+    if (unshot.is_zero()) return false;
+    shot = unshot * options_.overshoot;
+    current_shot_ = shot;
+    const double area = group_of(i).area, lost = patches_[i].lost >= 0 ? patches_[i].lost : patches_[i].rough_lost;
+    report_.energy.unshot = report_.energy.unshot - shot * area;
+    unshot_staying_ = unshot_staying_ - shot * (area * (lost >= 0 ? 1 - lost : 1.0));
   } else {
     // pick brightest patch: i
     i = brightest_patch();
@@ -107,6 +121,9 @@ bool Solver::shoot_once() {
     shot = unshot * options_.overshoot;
     sender_ = i;
     current_shot_ = shot;
+    sender_members_.clear();
+    sender_centre_ = sender.centre;
+    sender_radius_ = sender.radius;
     shape_sender();
     sender.unshot = unshot - shot;  // update(i): everything it held is shot now (the excess: below 0)
     report_.energy.unshot = report_.energy.unshot - shot * sender.area;  // kept current for ambient()
@@ -190,7 +207,7 @@ bool Solver::shoot_once() {
         // reach (RefineSettings::patch_area): slivers and small parts are fine already.
         const int generations = max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
         const bool can_split = !patch.clustered && el.generation < generations &&
-                               el.area >= std::ldexp(refine_.patch_area, 1 - generations);
+                               el.area >= std::ldexp(patch_area_, 1 - generations);
         const bool odd = el.generation % 2 == 1;
         // The push-down error costs three closed forms; it is estimated only where the
         // oracle's first condition (the cumulated gradient) holds and it can decide. Its
@@ -301,7 +318,14 @@ bool Solver::shoot_once() {
     complete_split.swap(complete_split_next);
   }
   account_transfers(terminals, reach, i, shot);
-  if (!is_luminaire(i) && !is_cluster(i)) patches_[i].shot += shot;
+  if (!sender_members_.empty()) {
+    const PlaneGroups::Group& g = group_of(i);
+    for (std::uint32_t n = 0; n < g.count; ++n)
+      patches_[groups_.members[g.first + n]].shot += sender_member_unshot_[n] * options_.overshoot;
+    sender_members_.clear();
+  } else if (!is_luminaire(i) && !is_cluster(i)) {
+    patches_[i].shot += shot;
+  }
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   report_.transfers_history.push_back(report_.energy_transfers);

@@ -56,8 +56,8 @@ struct SolveOptions {
   // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
-  // Face clusters (mesh/face_clusters.h): patches of less area than cluster_area that
-  // emit nothing are grouped, within spheres of radius cluster_radius, into clusters
+  // Face clusters (mesh/face_clusters.h): patches whose facet (the patches that touch
+  // in one plane) has less area than cluster_area and that emit nothing are grouped, within spheres of radius cluster_radius, into clusters
   // that send and receive light as one: a cluster far from a sender (kClusterFar of its
   // radii) receives at one point per part, and it shoots the light its patches
   // reflected as one sender (see Solver). 0 (either): no clusters, every patch on its
@@ -65,6 +65,12 @@ struct SolveOptions {
   // adaptive method never uses them (it gathers every earlier shot into new elements).
   double cluster_area = 0;
   double cluster_radius = 0;
+  // Sender groups (mesh/plane_groups.h): the patches that are in no face cluster are
+  // grouped, with the neighbours that lie in their plane and have their material,
+  // within spheres of this radius (at most 16 patches a group); a group sends its
+  // patches' light in one shot (see Solver). 0: every patch sends on its own. `dynrad
+  // solve` sets it with the clusters (three quarters of the patch size).
+  double group_radius = 0;
   // Stop when the estimated mean relative error of the written values
   // (Solver::estimate_error) falls below this (0: off). `converge` still applies as a
   // floor; when only the mesh's own error is left above the target (the unshot part is
@@ -128,6 +134,7 @@ struct SolveReport {
   std::uint64_t culled_receivers = 0;    // patches skipped by a shot, summed over shots (see SolveOptions::cull)
   std::uint64_t negligible_receivers = 0;  // of those, skipped for a negligible bound
   std::size_t clusters = 0, clustered_patches = 0, cluster_parts = 0;  // see SolveOptions::cluster_area
+  std::size_t sender_groups = 0, grouped_patches = 0;  // groups of more than one patch, and their patches
   std::uint64_t cluster_receptions = 0;  // clusters that received a shot as one, summed over shots
   std::uint64_t cluster_openings = 0;    // clusters whose patches received a shot one by one
   // Receivers (patches on their own and clusters) that a shot's tree tests found hidden

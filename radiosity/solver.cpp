@@ -32,16 +32,6 @@ struct Rng {
   double uniform() { return rad::uniform(state); }
 };
 
-// Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of
-// the way off the edges: a point on an edge lies in the neighbouring face's plane, and
-// a ray from there slips out through the seam.
-Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v) {
-  const double s = std::sqrt(u);
-  const Vec3d p = c[0] * (1 - s) + c[1] * (s * (1 - v)) + c[2] * (s * v);
-  const Vec3d centroid = (c[0] + c[1] + c[2]) / 3.0;
-  return p + (centroid - p) * 1e-2;
-}
-
 double sum(const Rgb& c) { return c.r + c.g + c.b; }
 double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
 
@@ -117,7 +107,11 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
                                      std::llround(patch.normal[2] * 1e9)};
     patch.plane = planes.emplace(k, static_cast<std::uint32_t>(planes.size())).first->second;
   }
+  double largest = 0;
+  for (const Patch& patch : patches_) largest = std::max(largest, patch.area);
+  patch_area_ = std::min(refine_.patch_area, largest);
   build_clusters();
+  build_groups();
   build_tree();
   survey_patches();
   // Every existing element starts at its patch's emission.
@@ -138,25 +132,34 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
 Solver::~Solver() = default;
 
 void Solver::survey_patches() {
-  // An open scene (some light has left it): the senders holding unshot light learn
-  // what share of it will leave too (lost_fraction, which their shots need anyway), so
-  // that ambient() does not count light that is on its way out.
+  // An open scene (some light has left it): the senders holding unshot light need an
+  // idea of what share of it will leave too, so that ambient() does not count light
+  // that is on its way out. A rough one does (rough_lost_fraction(), 64 rays): the
+  // ambient term is a sum over thousands of senders, and a sender's exact share
+  // (lost_fraction(), 1,024 rays) is measured when it shoots. Measuring it exactly for
+  // every sender that merely received light cost the IFC house 15% of its solve.
   const bool open = sum(report_.energy.escaped) > 0;
   if (open) {
     std::vector<std::uint32_t> unknown;
-    for (std::uint32_t p : standalone_)
-      if (patches_[p].lost < 0 && !patches_[p].unshot.is_zero()) unknown.push_back(p);
+    for (const PlaneGroups::Group& g : groups_.groups) {
+      const std::uint32_t leader = groups_.members[g.first];
+      if (patches_[leader].lost >= 0 || patches_[leader].rough_lost >= 0) continue;
+      bool holds = false;
+      for (std::uint32_t n = g.first; n < g.first + g.count && !holds; ++n)
+        holds = !patches_[groups_.members[n]].unshot.is_zero();
+      if (holds) unknown.push_back(leader);
+    }
     for (std::uint32_t c = 0; c < clusters_.clusters.size(); ++c) {
-      if (cluster_state_[c].lost >= 0) continue;
+      if (cluster_state_[c].lost >= 0 || cluster_state_[c].rough_lost >= 0) continue;
       const auto& cl = clusters_.clusters[c];
       bool holds = false;
       for (std::uint32_t k = cl.first_part; k < cl.first_part + cl.part_count && !holds; ++k)
         holds = !part_unshot_[k].is_zero();
       if (holds) unknown.push_back(cluster_sender(c));
     }
-    tbb::parallel_for(std::size_t(0), unknown.size(), [&](std::size_t n) { lost_fraction(unknown[n]); });
+    tbb::parallel_for(std::size_t(0), unknown.size(), [&](std::size_t n) { rough_lost_fraction(unknown[n]); });
   }
-  // A deterministic reduction over the senders (patches on their own, then clusters):
+  // A deterministic reduction over the senders (groups of patches, then clusters):
   // the same blocks, joined in the same order, for any number of threads, so the sums
   // are too. Ties go to the lower index.
   struct Survey {
@@ -164,7 +167,7 @@ void Solver::survey_patches() {
     double magnitude = 0, best_power = -1;
     std::uint32_t best = 0;
   };
-  const std::size_t standalone = standalone_.size();
+  const std::size_t standalone = groups_.groups.size();
   const std::size_t count = standalone + clusters_.clusters.size();
   const Survey total = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, count, 2048), Survey{},
@@ -174,11 +177,15 @@ void Solver::survey_patches() {
           double lost = -1, magnitude_now = 0;
           std::uint32_t id = 0;
           if (n < standalone) {
-            id = standalone_[n];
-            const Patch& patch = patches_[id];
-            power = patch.unshot * patch.area;
-            magnitude_now = magnitude(patch.unshot) * patch.area;
-            lost = patch.lost;
+            const PlaneGroups::Group& g = groups_.groups[n];
+            id = groups_.members[g.first];
+            for (std::uint32_t m = g.first; m < g.first + g.count; ++m) {
+              const Patch& patch = patches_[groups_.members[m]];
+              power += patch.unshot * patch.area;
+              magnitude_now += magnitude(patch.unshot) * patch.area;
+            }
+            const Patch& leader = patches_[id];
+            lost = leader.lost >= 0 ? leader.lost : leader.rough_lost;
           } else {
             const std::uint32_t c = static_cast<std::uint32_t>(n - standalone);
             const auto& cl = clusters_.clusters[c];
@@ -187,7 +194,7 @@ void Solver::survey_patches() {
               magnitude_now += magnitude(part_unshot_[k]);
             }
             id = cluster_sender(c);
-            lost = cluster_state_[c].lost;
+            lost = cluster_state_[c].lost >= 0 ? cluster_state_[c].lost : cluster_state_[c].rough_lost;
           }
           s.unshot += power;
           s.staying += power * (open && lost >= 0 ? 1 - lost : 1.0);
@@ -293,18 +300,55 @@ double Solver::lost_fraction(std::uint32_t id) {
   if (is_cluster(id)) return cluster_lost_fraction(cluster_index(id));
   Patch& p = patches_[id];
   if (p.lost >= 0) return p.lost;
-  const std::uint64_t seed = options_.seed ^ mix(0xE5CA9E000000ull + id);
-  const auto counts = escape_counts(seed, [&p](std::uint64_t& state, Vec3d& origin, Vec3d& normal) {
-    const double u = uniform(state), v = uniform(state);
-    origin = point_on_triangle(p.corners, u, v);
-    normal = p.normal;
-  });
+  const auto counts = patch_escape_counts(id, options_.escape_rays);
   p.escaped = counts[0];
   p.lost = counts[1];
   return p.lost;
 }
 
-std::array<double, 2> Solver::escape_counts(std::uint64_t seed, const EscapeOrigin& origin) const {
+std::array<double, 2> Solver::patch_escape_counts(std::uint32_t id, int rays) const {
+  const Patch& p = patches_[id];
+  // The rough count draws from another stream than the exact one.
+  const std::uint64_t seed = options_.seed ^ mix(0xE5CA9E000000ull + id) ^ (rays == options_.escape_rays ? 0 : 0x5106ull);
+  if (is_group(id)) {
+    // From points on the group's patches, each drawn in proportion to its area.
+    const PlaneGroups::Group& g = group_of(id);
+    return escape_counts(
+        seed,
+        [this, &g](std::uint64_t& state, Vec3d& origin, Vec3d& normal) {
+          double target = uniform(state) * g.area, running = 0;
+          std::uint32_t n = g.first;
+          for (; n + 1 < g.first + g.count; ++n) {
+            running += patches_[groups_.members[n]].area;
+            if (running > target) break;
+          }
+          const Patch& member = patches_[groups_.members[n]];
+          const double u = uniform(state), v = uniform(state);
+          origin = point_on_triangle(member.corners, u, v);
+          normal = member.normal;
+        },
+        rays);
+  }
+  return escape_counts(
+      seed,
+      [&p](std::uint64_t& state, Vec3d& origin, Vec3d& normal) {
+        const double u = uniform(state), v = uniform(state);
+        origin = point_on_triangle(p.corners, u, v);
+        normal = p.normal;
+      },
+      rays);
+}
+
+void Solver::rough_lost_fraction(std::uint32_t id) {
+  if (is_cluster(id)) {
+    ClusterState& state = cluster_state_[cluster_index(id)];
+    state.rough_lost = cluster_escape_counts(cluster_index(id), kRoughEscapeRays)[1];
+  } else {
+    patches_[id].rough_lost = patch_escape_counts(id, kRoughEscapeRays)[1];
+  }
+}
+
+std::array<double, 2> Solver::escape_counts(std::uint64_t seed, const EscapeOrigin& origin, int rays) const {
   // side x side strata; one row per task, each row with its own seed: the counts are
   // the same for any number of threads.
   auto cast = [&](int side, std::uint64_t pass) {
@@ -333,8 +377,8 @@ std::array<double, 2> Solver::escape_counts(std::uint64_t seed, const EscapeOrig
     }
     return sum;
   };
-  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(options_.escape_rays))));
-  if (side >= 4) {
+  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(rays))));
+  if (side >= 4 && rays == options_.escape_rays) {
     const auto [escaped, back] = cast(side / 2, 0x9A55ull << 40);
     if (escaped + back == 0) return {0.0, 0.0};
   }
@@ -452,6 +496,7 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   }
   if (is_cluster(sender_id)) return cluster_form_factor(x, normal, key, true, unoccluded);
   const Patch& sender = patches_[sender_id];
+  const bool group = sender_id == sender_ && !sender_members_.empty();
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
                                                       sender.corners[2], sender.normal);
@@ -471,7 +516,8 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
     int n = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {
-        const Vec3d t = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
+        const Vec3d t = group ? group_sender_point((i + rng.uniform()) / side, (j + rng.uniform()) / side, rng.uniform())
+                              : point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
         if (OpenMesh::dot(normal, t - x) > 0) targets[n++] = t;
       }
     visible += visibility_->visible_count(x, normal, targets, n, sender.normal);
@@ -546,22 +592,9 @@ double Solver::element_form_factor(ElementId q) const {
 double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   if (is_luminaire(sender_)) return luminaire_illuminance(x, n, sender_, 0, false, nullptr);
   if (is_cluster(sender_)) return cluster_form_factor(x, n, 0, false, nullptr);
+  if (!sender_members_.empty()) return group_closed_form(x, n);
   const Patch& sender = patches_[sender_];
-  if (shape_.on && (x - sender.centre).sqrnorm() < kShapeNear * kShapeNear * sender.radius * sender.radius)
-    return point_to_quartered_triangle(x, n, sender.corners.data(), shape_.weight.data(), sender.normal);
-  double f = point_to_triangle(x, n, sender.corners[0], sender.corners[1], sender.corners[2], sender.normal);
-  if (shape_.on && f > 0) {
-    // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a quarter
-    // of the sender sum to first order to grad K(c) . dipole, the weights' mean being 1.
-    const Vec3d d = shape_.centroid - x;
-    const double r2 = d.sqrnorm(), a = OpenMesh::dot(n, d), b = -OpenMesh::dot(sender.normal, d);
-    if (a > 0 && b > 0) {
-      const double k = sender.area / (M_PI * r2 * r2);
-      const Vec3d gradient = (n * b - sender.normal * a - d * (4 * a * b / r2)) * k;
-      f = std::max(0.0, f + OpenMesh::dot(gradient, shape_.dipole));
-    }
-  }
-  return f;
+  return shaped_closed_form(x, n, sender.corners, sender.centre, sender.radius, sender.area, sender.normal, shape_);
 }
 
 double Solver::luminance_at(ElementId root, const Vec3d& p) const {
@@ -588,8 +621,15 @@ void Solver::shape_sender() {
   shape_.on = false;
   shape_.max_weight = 1;
   if (!options_.shaped_senders) return;
-  Patch& sender = patches_[sender_];
-  const ElementId root = hierarchy_.patch_root(sender_);
+  // (m is below 0 when the sender gives back what an overshoot sent too much; the
+  // shape is then that of the excess.)
+  shape_ = shape_of(sender_, current_shot_.luminance() / options_.overshoot);
+}
+
+Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
+  SenderShape shape;
+  Patch& sender = patches_[patch];
+  const ElementId root = hierarchy_.patch_root(patch);
   const auto& c = sender.corners;
   const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
   // The unshot radiosity at the corners and edge midpoints (nodes 0-2 and 3-5):
@@ -613,22 +653,40 @@ void Solver::shape_sender() {
   // unshot radiosity m (from the energy it received, which also knows its interior).
   // Added, not scaled: over a whole solve the deviations sum to those of the sender's
   // final values, so where the answer is even (a furnace) the shapes cancel.
-  // (m is below 0 when the sender gives back what an overshoot sent too much; the
-  // shape is then that of the excess.)
-  const double m = current_shot_.luminance() / options_.overshoot;
-  if (!(std::abs(m) > 0)) return;
+  if (!(std::abs(m) > 0)) return shape;
   double spread = 0;
   for (int s = 0; s < 4; ++s) spread = std::max(spread, std::abs(part_mean[s] - mean));
-  if (spread < 1e-3 * std::abs(m)) return;  // even enough: one closed form
-  shape_.centroid = (c[0] + c[1] + c[2]) / 3.0;
-  shape_.dipole = Vec3d(0, 0, 0);
+  if (spread < 1e-3 * std::abs(m)) return shape;  // even enough: one closed form
+  shape.centroid = (c[0] + c[1] + c[2]) / 3.0;
+  shape.dipole = Vec3d(0, 0, 0);
   for (int s = 0; s < 4; ++s) {
-    shape_.weight[s] = 1 + (part_mean[s] - mean) / m;
-    shape_.max_weight = std::max(shape_.max_weight, std::abs(shape_.weight[s]));
+    shape.weight[s] = 1 + (part_mean[s] - mean) / m;
+    shape.max_weight = std::max(shape.max_weight, std::abs(shape.weight[s]));
     if (s < 3)  // corner part s's centroid is halfway from the sender's to corner s
-      shape_.dipole += (c[s] - shape_.centroid) * (0.5 * (shape_.weight[s] - 1) / 4);
+      shape.dipole += (c[s] - shape.centroid) * (0.5 * (shape.weight[s] - 1) / 4);
   }
-  shape_.on = true;
+  shape.on = true;
+  return shape;
+}
+
+double Solver::shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
+                                  const Vec3d& centre, double radius, double area, const Vec3d& normal,
+                                  const SenderShape& shape) {
+  if (shape.on && (x - centre).sqrnorm() < kShapeNear * kShapeNear * radius * radius)
+    return point_to_quartered_triangle(x, n, corners.data(), shape.weight.data(), normal);
+  double f = point_to_triangle(x, n, corners[0], corners[1], corners[2], normal);
+  if (shape.on && f > 0) {
+    // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a quarter
+    // of the sender sum to first order to grad K(c) . dipole, the weights' mean being 1.
+    const Vec3d d = shape.centroid - x;
+    const double r2 = d.sqrnorm(), a = OpenMesh::dot(n, d), b = -OpenMesh::dot(normal, d);
+    if (a > 0 && b > 0) {
+      const double k = area / (M_PI * r2 * r2);
+      const Vec3d gradient = (n * b - normal * a - d * (4 * a * b / r2)) * k;
+      f = std::max(0.0, f + OpenMesh::dot(gradient, shape.dipole));
+    }
+  }
+  return f;
 }
 
 double Solver::element_reach(ElementId q) const {
@@ -637,7 +695,9 @@ double Solver::element_reach(ElementId q) const {
 
 void Solver::midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const {
   const Element& el = hierarchy_.element(q);
-  if (is_luminaire(sender_) || is_cluster(sender_)) {  // the exact form costs no more than a far-field one
+  // (the exact form costs a luminaire or a cluster no more than a far-field one; a
+  // group's far field would need its weights' moments)
+  if (is_luminaire(sender_) || is_cluster(sender_) || !sender_members_.empty()) {
     const Vec3d& n = hierarchy_.normal(q);
     const Vec3d centroid = hierarchy_.centroid(q);
     for (int k = 0; k < 3; ++k) {
@@ -926,7 +986,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
   const bool from_cluster = is_cluster(sender_id);
   const double power = from_luminaire  ? luminaire_flux_[sender_id - patches_.size()]
                        : from_cluster ? 1.0
-                                      : patches_[sender_id].area;
+                                      : group_of(sender_id).area;
   const double escaped = from_luminaire  ? luminaire_escaped_[sender_id - patches_.size()]
                          : from_cluster ? cluster_state_[cluster_index(sender_id)].escaped
                                         : patches_[sender_id].escaped;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "mesh/face_clusters.h"
+#include "mesh/plane_groups.h"
 #include "mesh/refinement.h"
 #include "mesh/vertex_split.h"
 #include "radiosity/grow_array.h"
@@ -184,6 +185,7 @@ class Solver {
     Rgb reflectance, emission;
     Rgb shot;  // radiosity shot so far, in total
     double lost = -1, escaped = 0;  // see lost_fraction()
+    double rough_lost = -1;         // see rough_lost_fraction(), until `lost` is known
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
     Vec3d centre;                   // centre and radius of a sphere around the patch
     double radius = 0;
@@ -211,7 +213,14 @@ class Solver {
   // that meet nothing and that meet nothing or a back face, from the points and
   // normals `origin` draws (from the random state it is given), seeded by `seed`.
   using EscapeOrigin = std::function<void(std::uint64_t& state, Vec3d& origin, Vec3d& normal)>;
-  std::array<double, 2> escape_counts(std::uint64_t seed, const EscapeOrigin& origin) const;
+  // `rays` of them (the first pass is for SolveOptions::escape_rays only).
+  std::array<double, 2> escape_counts(std::uint64_t seed, const EscapeOrigin& origin, int rays) const;
+  std::array<double, 2> patch_escape_counts(std::uint32_t patch, int rays) const;
+  std::array<double, 2> cluster_escape_counts(std::uint32_t cluster, int rays) const;
+  // A rough lost fraction (kRoughEscapeRays) for a patch or cluster sender that holds
+  // unshot light but has not shot yet: survey_patches() needs only an idea of it.
+  void rough_lost_fraction(std::uint32_t id);
+  static constexpr int kRoughEscapeRays = 64;
   // Form factors at the corners of `elements` for the current sender, computed in
   // parallel for every receiver not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
@@ -262,6 +271,14 @@ class Solver {
   // reference, 1.5, 2 and 3 all 0.24%.
   static constexpr double kShapeNear = 1.5;
   void shape_sender();
+  // The shape of patch `patch`'s unshot radiosity for a shot of mean luminance m (see
+  // SenderShape); moves the patch's shot_at_nodes on to this shot.
+  SenderShape shape_of(std::uint32_t patch, double m);
+  // F from x (normal n) to a triangle sender with `shape` (the quartered closed form
+  // near it, the dipole's first-order correction beyond).
+  static double shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
+                                   const Vec3d& centre, double radius, double area, const Vec3d& normal,
+                                   const SenderShape& shape);
   // Luminance of the cumulated radiosity at point p of patch `root`'s surface: the
   // leaf's corner values interpolated, plus what its ancestors still hold to push down.
   double luminance_at(ElementId root, const Vec3d& p) const;
@@ -330,6 +347,50 @@ class Solver {
     }
   };
   std::vector<WalkChunk> walk_chunks_;
+  // RefineSettings::patch_area, but no more than the largest patch: patches given
+  // larger than the model's faces (a box of 2 m faces at patch size 10) still refine.
+  double patch_area_ = 0;
+
+  // Sender groups (SolveOptions::group_radius; mesh/plane_groups.h; solver_groups.cpp).
+  // The patches on their own (not in a face cluster) are grouped with their neighbours
+  // in one plane: a group sends what all its patches hold in one shot, from its first
+  // patch's id (its leader), and each patch keeps receiving on its own. The light a
+  // group sends is exact: F to the group is the sum over its patches of Lambert's closed
+  // form times the patch's weight, its unshot radiosity over the group's mean
+  // (luminance), and its rays go to points on the patches drawn by those weights and
+  // areas. A group of one patch is that patch, shaped as before (shape_sender()).
+  // The group's lost fraction is kept in its leader's Patch::lost, escaped and
+  // rough_lost, measured from points on all its patches.
+  PlaneGroups groups_;
+  bool is_group(std::uint32_t id) const {
+    return id < patches_.size() && groups_.groups[groups_.group_of[id]].count > 1;
+  }
+  const PlaneGroups::Group& group_of(std::uint32_t patch) const { return groups_.groups[groups_.group_of[patch]]; }
+  void build_groups();
+  // Makes group `leader`'s the current sender: its mean unshot radiosity (what the shot
+  // carries per unit of its area), the weights; the patches keep what overshoot leaves.
+  Rgb start_group_shot(std::uint32_t leader);
+  struct SenderMember {
+    std::array<Vec3d, 3> corners;
+    Vec3d centroid;
+    double radius = 0;  // of a sphere about the centroid holding its corners
+    double area = 0, weight = 0;
+    double cumulated = 0;  // of |weight| x area, up to and with this one, over the total
+    SenderShape shape;     // of its own unshot radiosity (shaped senders)
+  };
+  std::vector<SenderMember> sender_members_;  // the current group sender's (empty: none)
+  std::vector<Rgb> sender_member_unshot_;     // what each held before the shot
+  Vec3d sender_centre_;                       // the current patch or group sender's sphere
+  double sender_radius_ = 0;
+  // A point on the current group sender for uniform numbers u (which member) and v, w
+  // (where in it).
+  Vec3d group_sender_point(double u, double v, double w) const;
+  // Lambert's closed form from x (normal n) to the current group sender, weighted; a
+  // patch at least kMemberFar of its radii away, wholly above x's horizon, counts by the
+  // point-to-area form A cos cos / (pi r^2) instead (relative error about 0.25%, 0.5% at
+  // 8 radii: measured against numerical integration over a right triangle).
+  double group_closed_form(const Vec3d& x, const Vec3d& n) const;
+  static constexpr double kMemberFar = 12.0;
 
   // Face clusters (SolveOptions::cluster_area; solver_clusters.cpp). A cluster far from
   // the sender (kClusterFar of its radii from the sender's bounding sphere, or the sky)
@@ -346,6 +407,7 @@ class Solver {
   std::vector<std::uint32_t> standalone_;  // patches in no cluster, in id order
   struct ClusterState {
     double lost = -1, escaped = 0;  // as Patch::lost and escaped
+    double rough_lost = -1;         // as Patch::rough_lost
     bool dirty = false;             // parts hold pending light for its patches
   };
   std::vector<ClusterState> cluster_state_;

@@ -57,7 +57,7 @@ int Solver::cluster_verdict(std::uint32_t c) const {
     const Patch& sender = patches_[sender_];
     // Exact: the whole cluster is behind the sender's plane.
     if (options_.cull && OpenMesh::dot(sender.normal, cl.centre - sender.corners[0]) <= -cl.radius) return 0;
-    distance = (cl.centre - sender.centre).norm() - sender.radius;
+    distance = (cl.centre - sender_centre_).norm() - sender_radius_;
   }
   return distance >= kClusterFar * cl.radius ? 1 : 2;
 }
@@ -169,10 +169,17 @@ double Solver::cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t
 double Solver::cluster_lost_fraction(std::uint32_t c) {
   ClusterState& state = cluster_state_[c];
   if (state.lost >= 0) return state.lost;
+  const auto counts = cluster_escape_counts(c, options_.escape_rays);
+  state.escaped = counts[0];
+  state.lost = counts[1];
+  return state.lost;
+}
+
+std::array<double, 2> Solver::cluster_escape_counts(std::uint32_t c, int rays) const {
   const FaceClusters::Cluster& cl = clusters_.clusters[c];
   // From the parts' points, each drawn in proportion to its area.
-  const auto counts = escape_counts(options_.seed ^ mix(0xC1A5000000000ull + c),
-                                    [this, &cl](std::uint64_t& random, Vec3d& origin, Vec3d& normal) {
+  const std::uint64_t seed = options_.seed ^ mix(0xC1A5000000000ull + c) ^ (rays == options_.escape_rays ? 0 : 0x5106ull);
+  return escape_counts(seed, [this, &cl](std::uint64_t& random, Vec3d& origin, Vec3d& normal) {
                                       double target = uniform(random) * cl.area, running = 0;
                                       std::uint32_t k = cl.first_part;
                                       for (; k + 1 < cl.first_part + cl.part_count; ++k) {
@@ -181,10 +188,7 @@ double Solver::cluster_lost_fraction(std::uint32_t c) {
                                       }
                                       origin = clusters_.parts[k].point;
                                       normal = clusters_.parts[k].normal;
-                                    });
-  state.escaped = counts[0];
-  state.lost = counts[1];
-  return state.lost;
+                                    }, rays);
 }
 
 }  // namespace dynrad::rad

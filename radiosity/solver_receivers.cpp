@@ -50,8 +50,8 @@ bool Solver::sender_near(const Bounds& box) const {
     centre = sender_cluster_centre_;
     radius = sender_cluster_radius_;
   } else {
-    centre = patches_[sender_].centre;
-    radius = patches_[sender_].radius;
+    centre = sender_centre_;
+    radius = sender_radius_;
   }
   // Distance from the sphere's centre to the box, against its radius and a margin of a
   // tenth of the box (a sender at a node's edge sees it at grazing angles).
@@ -91,9 +91,8 @@ ReceiverTree::Seen Solver::test_node(std::uint32_t node) const {
       to_normal = sender_parts_[k].normal;
     } else {
       const Patch& p = patches_[sender_];
-      const double u = std::sqrt(uniform(state)), v = uniform(state);
-      to = p.corners[0] * (1 - u) + p.corners[1] * (u * (1 - v)) + p.corners[2] * (u * v);
-      to = to + (p.centre - to) * 1e-2;
+      const double u = uniform(state), v = uniform(state);
+      to = sender_members_.empty() ? point_on_triangle(p.corners, u, v) : group_sender_point(uniform(state), u, v);
       to_normal = p.normal;
     }
     // Facing each other: the point in front of the sender and the sender in front of it.
@@ -185,6 +184,14 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
       if (OpenMesh::dot(plane_of.normal, c - plane_of.corners[0]) > 0) return true;
     return false;
   };
+  // A group sender: in front of a receiver's plane if any of its patches is.
+  auto sender_in_front_of = [&](const Patch& receiver) {
+    if (sender_members_.empty()) return in_front(receiver, sender);
+    for (const SenderMember& m : sender_members_)
+      for (const Vec3d& c : m.corners)
+        if (OpenMesh::dot(receiver.normal, c - receiver.corners[0]) > 0) return true;
+    return false;
+  };
   // Per candidate, in parallel: kept (-1), culled exactly (-2), or the bound it was
   // skipped for (>= 0). The roots and the sums follow in candidate order.
   // The form factors at the corners of every kept patch are computed in the same pass
@@ -193,7 +200,7 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
   verdict.assign(candidates.size(), -1.0);
   tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t n) {
     const std::uint32_t j = candidates[n];
-    if (j == i) {
+    if (j == i || (!sender_members_.empty() && groups_.group_of[j] == groups_.group_of[i])) {
       verdict[n] = -3.0;  // the sender itself
       return;
     }
@@ -244,7 +251,7 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
       // sender sends nothing there), or the whole sender is behind or on the receiver's
       // plane (the receiver's hemisphere does not hold it). Both give F = 0 at every
       // point, which is what point_to_polygon would compute.
-      if (!in_front(sender, receiver) || !in_front(receiver, sender)) {
+      if (!in_front(sender, receiver) || !sender_in_front_of(receiver)) {
         verdict[n] = -2.0;
         return;
       }
@@ -252,7 +259,7 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
       // with d no more than the distance between the two patches, so the receiver's
       // share of the shot's power, A_j F_avg / A_i, is at most A_j / (pi d^2) (times
       // the largest weight of a shaped sender's parts).
-      const double d = (receiver.centre - sender.centre).norm() - receiver.radius - sender.radius;
+      const double d = (receiver.centre - sender_centre_).norm() - receiver.radius - sender_radius_;
       if (per_patch > 0 && d > 0) {
         const double bound = shape_.max_weight * receiver.area / (M_PI * d * d);
         if (bound < per_patch) {

@@ -12,15 +12,42 @@ std::uint8_t encode_srgb(double linear) {
   return static_cast<std::uint8_t>(std::lround(encoded * 255.0));
 }
 
-double auto_exposure(const std::vector<Rgb>& linear, const std::vector<char>& include) {
-  std::vector<double> luminance;
+double auto_exposure(const std::vector<Rgb>& linear, const std::vector<char>& include,
+                     const std::vector<double>& area) {
+  std::vector<std::pair<double, double>> luminance;  // and weight
+  double total = 0;
   for (std::size_t i = 0; i < linear.size(); ++i)
-    if (i >= include.size() || include[i]) luminance.push_back(linear[i].luminance());
+    if (i >= include.size() || include[i]) {
+      const double w = area.empty() ? 1.0 : area[i];
+      luminance.emplace_back(linear[i].luminance(), w);
+      total += w;
+    }
   if (luminance.empty()) return 1.0;
-  const std::size_t k = std::min(luminance.size() - 1, static_cast<std::size_t>(0.99 * luminance.size()));
-  std::nth_element(luminance.begin(), luminance.begin() + static_cast<std::ptrdiff_t>(k), luminance.end());
-  const double reference = luminance[k];
+  double reference = 0;
+  if (area.empty()) {
+    const std::size_t k = std::min(luminance.size() - 1, static_cast<std::size_t>(0.99 * luminance.size()));
+    std::nth_element(luminance.begin(), luminance.begin() + static_cast<std::ptrdiff_t>(k), luminance.end());
+    reference = luminance[k].first;
+  } else {
+    std::sort(luminance.begin(), luminance.end());
+    double below = 0;
+    for (const auto& [value, w] : luminance) {
+      reference = value;
+      below += w;
+      if (below >= 0.99 * total) break;
+    }
+  }
   return reference > 0 ? 0.9 / reference : 1.0;
+}
+
+std::vector<double> vertex_areas(const std::vector<Vec3d>& positions,
+                                 const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  std::vector<double> area(positions.size(), 0.0);
+  for (const auto& t : triangles) {
+    const double a = 0.5 * OpenMesh::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]).norm();
+    for (std::uint32_t v : t) area[v] += a / 3;
+  }
+  return area;
 }
 
 VertexValues tone_map(std::vector<Rgb> linear, double exposure, const std::string& name) {

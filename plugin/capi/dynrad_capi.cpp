@@ -228,7 +228,7 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
 
   std::vector<char> lit(output.emitter.size());
   for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !output.emitter[x];
-  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(output.radiosity, lit);
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(output.radiosity, lit, split_vertex_areas(*mesh, output.split));
   const VertexValues values = rad::tone_map(output.radiosity, exposure, "radiosity");
   result->radiosity.reserve(3 * vertices);
   result->display.reserve(3 * vertices);
@@ -479,7 +479,7 @@ dynrad_status dynrad_options_set_ambient(dynrad_options* options, int on) {
 dynrad_status dynrad_options_set_overshoot(dynrad_options* options, double overshoot) {
   const dynrad_status s = set_option(options, std::isfinite(overshoot) && overshoot > 0 && overshoot < 2,
                                      "dynrad_options_set_overshoot: must lie strictly between 0 and 2 (1: none).");
-  if (s == DYNRAD_OK) options->solve.overshoot = overshoot;
+  if (s == DYNRAD_OK) options->request.overshoot = overshoot;
   return s;
 }
 

@@ -106,7 +106,7 @@ int run_grid(const GridOptions& options) {
   for (std::size_t f = 0; f < scene.triangles.size(); ++f)
     if (!scene.emission[f].is_zero())
       for (std::uint32_t v : scene.triangles[f]) include[v] = 0;
-  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(scene.radiosity, include);
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(scene.radiosity, include, rad::vertex_areas(scene.positions, scene.triangles));
   rad::ViewOptions view_options;
   view_options.exposure = exposure;
   const std::vector<rad::View> views =

@@ -7,6 +7,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io_util.h"
+#include "mesh/lit_decimate.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
@@ -62,9 +63,11 @@ struct SolveCliOptions {
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   bool clusters = true;
+  double overshoot = -1;  // -1: the method's (radiosity/settings.h)
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
+  std::size_t max_triangles = 500000;  // decimate the written mesh above this (0: never)
   // "auto": photometric (lux, cd/m^2) when the scene has luminaires, else radiometric.
   std::string units = "auto";
   rad::SolveOptions solve;
@@ -246,6 +249,7 @@ int run_solve(SolveCliOptions& options) {
   request.pushdown_floor = options.pushdown_floor;
   request.memory_budget_mib = options.memory_budget_mb;
   request.clusters = options.clusters;
+  request.overshoot = options.overshoot;
   const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options.solve);
   const rad::ChosenSettings& chosen = applied.chosen;
   const double patch_size = applied.patch_size;
@@ -285,7 +289,7 @@ int run_solve(SolveCliOptions& options) {
   const rad::Solver::Output result = solver.output();
   std::vector<char> lit(result.emitter.size());
   for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !result.emitter[x];
-  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(result.radiosity, lit);
+  const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(result.radiosity, lit, split_vertex_areas(mesh, result.split));
   VertexValues values = rad::tone_map(result.radiosity, exposure, "radiosity");
   if (photometric) {
     // Illuminance (lx) arriving and luminance (cd/m^2) leaving, L = B / pi for a
@@ -344,7 +348,22 @@ int run_solve(SolveCliOptions& options) {
                                detail::srgb_to_linear(shown[2] / 255.0));
       }
   }
-  write_mesh_with_values(options.output, mesh, result.split, values, write);
+  if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles) {
+    // Too fine for a viewer: decimated within a colour bound (mesh/lit_decimate.h).
+    LitDecimateOptions decimate;
+    decimate.max_triangles = options.max_triangles;
+    const DecimatedLitMesh lighter = decimate_lit_scene(mesh, result.split, values, decimate);
+    const LitDecimateReport& d = lighter.report;
+    spdlog::info("decimated for viewers: {} -> {} triangles{}, worst colour error {:.2f} (8-bit units, {:.0f}% of the "
+                 "bound), {:.1f} s",
+                 d.triangles_before, d.triangles_after,
+                 d.reached_target ? "" : fmt::format(" (the colour bound allows no fewer than the {} asked for)",
+                                                     options.max_triangles),
+                 d.worst_colour_error, 100 * d.worst_error_fraction, d.seconds);
+    write_mesh_with_values(options.output, *lighter.scene, lighter.split, lighter.values, write);
+  } else {
+    write_mesh_with_values(options.output, mesh, result.split, values, write);
+  }
 
   if (!options.preview.empty()) {
     const int w = options.preview_width, h = options.preview_width * 3 / 4;
@@ -418,6 +437,8 @@ int run_solve(SolveCliOptions& options) {
                      {"parts", report.cluster_parts},
                      {"received_as_one", report.cluster_receptions},
                      {"opened", report.cluster_openings}};
+    j["sender_groups"] = {{"groups", report.sender_groups}, {"patches", report.grouped_patches}};
+    j["overshoot"] = options.solve.overshoot;
     j["hidden_receivers"] = report.hidden_receivers;
     j["visibility_tests"] = report.visibility_tests;
     j["negligible_receivers"] = report.negligible_receivers;
@@ -546,9 +567,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--crease-angle", options->solve.crease_angle, "Split vertices where faces meet at more than this")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
-  command->add_option("--overshoot", options->solve.overshoot,
-                      "Over-relax each shot by this factor (1: none; 1.3 reaches a given accuracy in fewer shots)")
-      ->capture_default_str()
+  command->add_option("--overshoot", options->overshoot,
+                      "Over-relax each shot by this factor (default 1: none; 1.3 reaches a given unshot fraction in "
+                      "fewer shots)")
       ->check(CLI::Range(0.5, 1.9));
   command->add_option("--negligible-share", options->solve.negligible_share,
                       "Per shot, skip receivers whose bounded share of its power is below this over the patch count "
@@ -565,6 +586,10 @@ Command add_solve_command(CLI::App& app) {
                    "Add (the default) or leave out the ambient estimate of light not yet shot in the written values "
                    "(Cohen et al. 1988)");
   command->add_flag("--ascii", options->ascii, "Write ASCII PLY instead of binary");
+  command->add_option("--max-triangles", options->max_triangles,
+                      "Decimate the written mesh to at most this many triangles where no vertex's display colour "
+                      "moves by more than 1% (at least 1 of 255) and the surface stays the same (0: never)")
+      ->capture_default_str();
   command->add_option("--units", options->units,
                       "auto, photometric or radiometric. Photometric (the default when the scene has luminaires): "
                       "lumens, lux and cd/m^2; emitting faces' W/m^2 are converted at 179 lm/W. The PLY then also "

@@ -162,7 +162,7 @@ DYNRAD_API dynrad_status dynrad_options_set_imprint(dynrad_options* options, int
  * (nonzero: on, the default) or shoot it evenly (0: `--flat-senders`). */
 DYNRAD_API dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
- * command line (the 99th percentile of lit vertices maps to 0.9). */
+ * command line (the 99th percentile of the lit surface's luminance, by area, maps to 0.9). */
 DYNRAD_API dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure);
 
 /* ------------------------------------------------------------------------------ */

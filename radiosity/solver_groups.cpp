@@ -1,0 +1,99 @@
+// Sender groups in the solver (see solver.h, "Sender groups", and mesh/plane_groups.h):
+// building them and shooting from one.
+#include "radiosity/solver.h"
+
+#include "radiosity/form_factor.h"
+#include "radiosity/random.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dynrad::rad {
+
+void Solver::build_groups() {
+  PlaneGroupOptions o;
+  o.max_radius = refine_.method == Method::adaptive ? 0.0 : options_.group_radius;
+  // Small: less than a quarter of the smallest whole patch (RefineSettings::patch_area,
+  // or the largest patch where that is smaller), so that patches cut to the patch size
+  // stay senders of their own, and only slivers and pieces join them. (With an eighth,
+  // the leftover strips where the 1990 room's faces are cut to the patch size joined
+  // too, and its error rose from 0.49% to 0.54% against the path tracer.)
+  o.small_area = patch_area_ / 4;
+  // Patches in face clusters send with their cluster. (An emitter's neighbours in a
+  // group share its material, so they emit alike.)
+  groups_ = build_plane_groups(hierarchy_, o, [this](std::uint32_t p) { return !patches_[p].clustered; });
+  report_.sender_groups = report_.grouped_patches = 0;
+  for (const PlaneGroups::Group& g : groups_.groups)
+    if (g.count > 1) {
+      ++report_.sender_groups;
+      report_.grouped_patches += g.count;
+    }
+}
+
+Rgb Solver::start_group_shot(std::uint32_t leader) {
+  const PlaneGroups::Group& g = group_of(leader);
+  Rgb power;
+  for (std::uint32_t n = g.first; n < g.first + g.count; ++n) {
+    const Patch& p = patches_[groups_.members[n]];
+    power += p.unshot * p.area;
+  }
+  const Rgb mean = power * (1.0 / g.area);
+  const double luminance = mean.luminance();
+  const double total_magnitude = std::abs(mean.r) + std::abs(mean.g) + std::abs(mean.b);
+  sender_members_.clear();
+  sender_member_unshot_.clear();
+  shape_.on = false;
+  shape_.max_weight = 1;
+  double cumulated = 0;
+  for (std::uint32_t n = g.first; n < g.first + g.count; ++n) {
+    Patch& p = patches_[groups_.members[n]];
+    SenderMember m;
+    m.corners = p.corners;
+    m.centroid = p.centre;
+    m.radius = p.radius;
+    m.area = p.area;
+    // The patch's share of the light per unit of area, by luminance (by the sum of the
+    // channels for light no eye sees), so that the weights' area-weighted mean is 1.
+    m.weight = std::abs(luminance) > 1e-12 * total_magnitude
+                   ? p.unshot.luminance() / luminance
+                   : (total_magnitude > 0 ? (p.unshot.r + p.unshot.g + p.unshot.b) / (mean.r + mean.g + mean.b) : 1.0);
+    if (!std::isfinite(m.weight)) m.weight = 1;
+    if (options_.shaped_senders) m.shape = shape_of(groups_.members[n], p.unshot.luminance());
+    shape_.max_weight = std::max(shape_.max_weight, std::abs(m.weight) * m.shape.max_weight);
+    cumulated += std::abs(m.weight) * m.area;
+    m.cumulated = cumulated;
+    sender_members_.push_back(m);
+    sender_member_unshot_.push_back(p.unshot);
+    p.unshot = p.unshot * (1 - options_.overshoot);  // update(i), as for one patch
+  }
+  for (SenderMember& m : sender_members_) m.cumulated = cumulated > 0 ? m.cumulated / cumulated : 1.0;
+  sender_members_.back().cumulated = 1.0;
+  sender_centre_ = g.centre;
+  sender_radius_ = g.radius;
+  return mean;
+}
+
+Vec3d Solver::group_sender_point(double u, double v, double w) const {
+  std::size_t k = 0;
+  while (k + 1 < sender_members_.size() && sender_members_[k].cumulated <= u) ++k;
+  return point_on_triangle(sender_members_[k].corners, v, w);
+}
+
+double Solver::group_closed_form(const Vec3d& x, const Vec3d& n) const {
+  const Vec3d& normal = patches_[sender_].normal;
+  double f = 0;
+  for (const SenderMember& m : sender_members_) {
+    if (m.weight == 0) continue;
+    const Vec3d d = m.centroid - x;
+    const double r2 = d.sqrnorm();
+    const double above = OpenMesh::dot(n, d), facing = -OpenMesh::dot(normal, d);
+    if (r2 > kMemberFar * kMemberFar * m.radius * m.radius && above > m.radius) {
+      if (facing > 0) f += m.weight * m.area * above * facing / (M_PI * r2 * r2);
+    } else {
+      f += m.weight * shaped_closed_form(x, n, m.corners, m.centroid, m.radius, m.area, normal, m.shape);
+    }
+  }
+  return std::max(0.0, f);
+}
+
+}  // namespace dynrad::rad
