@@ -148,8 +148,8 @@ class Builder {
   std::vector<std::uint32_t> in_cluster_, assigned_;  // per patch: cluster + 1 while building
 };
 
-// Per patch, the area of its facet: the patches reached from it over shared edges
-// between patches of the same normal.
+}  // namespace
+
 std::vector<double> facet_areas(const ElementHierarchy& h) {
   const TriMesh& mesh = h.scene().mesh();
   std::vector<double> area(h.patch_count(), 0.0);
@@ -182,7 +182,6 @@ std::vector<double> facet_areas(const ElementHierarchy& h) {
   return area;
 }
 
-}  // namespace
 
 FaceClusters build_face_clusters(const ElementHierarchy& hierarchy, const FaceClusterOptions& options,
                                  const std::function<bool(std::uint32_t)>& eligible) {

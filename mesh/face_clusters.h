@@ -66,6 +66,11 @@ struct FaceClusters {
   }
 };
 
+// Per patch of `hierarchy` (not refined yet), the area of its facet: the patches
+// reached from it over shared edges between patches facing the same way (normals equal
+// to 1e-9). A wall that CAD cut into strips is one facet; a chair leg's side is another.
+std::vector<double> facet_areas(const ElementHierarchy& hierarchy);
+
 // Clusters of the patches of `hierarchy` whose facets are smaller than
 // options.small_area and for which `eligible` holds (all, when it is empty). The hierarchy must not have been
 // refined yet (every patch is one face). Deterministic: the same input gives the same

@@ -136,9 +136,12 @@ bool Solver::shoot_once() {
   // a beam's edge) and the most of it: its shots may refine further, to a tighter
   // push-down error (RefineSettings::luminaire_levels, luminaire_pushdown).
   // (The sky is the exception: its light through a window is as soft as a patch's.)
+  // Not on detail, though (Patch::detail: the facets of frames, radiators, skirting
+  // boards, chair parts): there it refines as any sender's shot does.
   const bool from_luminaire = is_luminaire(i);
   const bool sharp = from_luminaire && luminaire(i).kind != Luminaire::Kind::sky;
   const int max_generation = 2 * (refine_.max_level + (sharp ? refine_.luminaire_levels : 0));
+  const int detail_generation = 2 * refine_.max_level;
   OracleThresholds oracle = refine_.dynamic;
   if (from_luminaire) {
     if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
@@ -146,6 +149,8 @@ bool Solver::shoot_once() {
     // an element with even corners may hold the peak of a pool of light.
     oracle.pushdown_cumulated_gradient = 0;
   }
+  OracleThresholds detail_oracle = oracle;
+  detail_oracle.pushdown = refine_.dynamic.pushdown;
   const Rgb ambient_now = oracle.pushdown_ambient ? ambient() : Rgb();
   std::vector<ElementId> level, next, subdivide, terminals;
   std::vector<ElementId> ready;  // existing elements of the next level
@@ -199,13 +204,15 @@ bool Solver::shoot_once() {
           in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
         }
         // Dynamic refines deeper where a shadow's edge crosses q (RefineSettings::shadow_levels).
-        const bool deeper = refine_.method == Method::dynamic && refine_.shadow_levels > 0 &&
-                            el.generation >= max_generation && shadow_crosses(q) &&
+        const bool detail = sharp && patch.detail;
+        const int element_generation = detail ? detail_generation : max_generation;
+        const bool deeper = refine_.method == Method::dynamic && refine_.shadow_levels > 0 && !detail &&
+                            el.generation >= element_generation && shadow_crosses(q) &&
                             !shadow_resolved(q);
         // (the patches of face clusters are not refined: they are small already)
         // No element gets smaller than the smallest a patch of the full patch size may
         // reach (RefineSettings::patch_area): slivers and small parts are fine already.
-        const int generations = max_generation + (deeper ? 2 * refine_.shadow_levels : 0);
+        const int generations = element_generation + (deeper ? 2 * refine_.shadow_levels : 0);
         const bool can_split = !patch.clustered && el.generation < generations &&
                                el.area >= std::ldexp(patch_area_, 1 - generations);
         const bool odd = el.generation % 2 == 1;
@@ -231,7 +238,7 @@ bool Solver::shoot_once() {
                                    adaptive_oracle(in, refine_.adaptive_threshold)));
             break;
           case Method::dynamic:
-            go_on = can_split && (odd || dynamic_oracle(in, oracle));
+            go_on = can_split && (odd || dynamic_oracle(in, detail ? detail_oracle : oracle));
             break;
         }
         if (go_on) {

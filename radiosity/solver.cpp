@@ -112,6 +112,11 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
   patch_area_ = std::min(refine_.patch_area, largest);
   build_clusters();
   build_groups();
+  if (refine_.method == Method::dynamic && refine_.patch_area > 0) {
+    const std::vector<double> facet = facet_areas(hierarchy_);
+    for (std::uint32_t p = 0; p < patches_.size(); ++p)
+      patches_[p].detail = facet[p] < kDetailFacet * patch_area_;
+  }
   build_tree();
   survey_patches();
   // Every existing element starts at its patch's emission.

@@ -348,6 +348,7 @@ int run_solve(SolveCliOptions& options) {
                                detail::srgb_to_linear(shown[2] / 255.0));
       }
   }
+  std::size_t written_vertices = result.split.size(), written_triangles = mesh.face_count();
   if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles) {
     // Too fine for a viewer: decimated within a colour bound (mesh/lit_decimate.h).
     LitDecimateOptions decimate;
@@ -361,6 +362,8 @@ int run_solve(SolveCliOptions& options) {
                                                      options.max_triangles),
                  d.worst_colour_error, 100 * d.worst_error_fraction, d.seconds);
     write_mesh_with_values(options.output, *lighter.scene, lighter.split, lighter.values, write);
+    written_vertices = lighter.split.size();
+    written_triangles = lighter.scene->face_count();
   } else {
     write_mesh_with_values(options.output, mesh, result.split, values, write);
   }
@@ -389,8 +392,8 @@ int run_solve(SolveCliOptions& options) {
                photometric ? "lm" : "W if the model is in metres",
                e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
                e.escaped.r + e.escaped.g + e.escaped.b, e.unshot.r + e.unshot.g + e.unshot.b);
-  spdlog::info("wrote {} ({} vertices, {} triangles, {} elements)", options.output, result.split.size(),
-               mesh.face_count(), hierarchy.element_count());
+  spdlog::info("wrote {} ({} vertices, {} triangles, {} elements)", options.output, written_vertices,
+               written_triangles, hierarchy.element_count());
 
   {
     nlohmann::json j;
