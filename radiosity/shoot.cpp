@@ -136,12 +136,13 @@ bool Solver::shoot_once() {
   // a beam's edge) and the most of it: its shots may refine further, to a tighter
   // push-down error (RefineSettings::luminaire_levels, luminaire_pushdown).
   // (The sky is the exception: its light through a window is as soft as a patch's.)
-  // Not on detail, though (Patch::detail: the facets of frames, radiators, skirting
-  // boards, chair parts): there it refines as any sender's shot does.
+  // Less on detail (Patch::detail: the facets of frames, radiators, skirting boards,
+  // chair parts): RefineSettings::detail_luminaire_levels, the patches' push-down error
+  // and no shadow levels.
   const bool from_luminaire = is_luminaire(i);
   const bool sharp = from_luminaire && luminaire(i).kind != Luminaire::Kind::sky;
   const int max_generation = 2 * (refine_.max_level + (sharp ? refine_.luminaire_levels : 0));
-  const int detail_generation = 2 * refine_.max_level;
+  const int detail_generation = 2 * (refine_.max_level + (sharp ? refine_.detail_luminaire_levels : 0));
   OracleThresholds oracle = refine_.dynamic;
   if (from_luminaire) {
     if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
