@@ -5,6 +5,7 @@
 
 #include "mesh/types.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,20 @@ inline std::uint64_t mix(std::uint64_t z) {
 inline double uniform(std::uint64_t& state) {
   state = mix(state);
   return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+// A seeded stream of its own: each (receiver, sender) pair draws its own samples.
+struct Rng {
+  std::uint64_t state;
+  double uniform() { return rad::uniform(state); }
+};
+
+// The strata of `count` visibility rays over a sender: rows x columns, the square
+// root's both ways (at most 16), or 2 x 1 for two rays.
+inline void strata(int count, int& rows, int& columns) {
+  const int root = static_cast<int>(std::lround(std::sqrt(static_cast<double>(count))));
+  rows = count == 2 ? 2 : std::clamp(root, 1, 16);
+  columns = count == 2 ? 1 : rows;
 }
 
 // Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of

@@ -26,11 +26,6 @@ namespace dynrad::rad {
 
 namespace {
 
-// Each (receiver, sender) pair draws its own samples (radiosity/random.h).
-struct Rng {
-  std::uint64_t state;
-  double uniform() { return rad::uniform(state); }
-};
 
 double sum(const Rgb& c) { return c.r + c.g + c.b; }
 double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
@@ -506,7 +501,7 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   }
   if (is_cluster(sender_id)) return cluster_form_factor(x, normal, key, true, unoccluded);
   const Patch& sender = patches_[sender_id];
-  const bool group = sender_id == sender_ && !sender_members_.empty();
+  if (sender_id == sender_ && !sender_members_.empty()) return group_form_factor(key, x, normal, unoccluded);
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
                                                       sender.corners[2], sender.normal);
@@ -522,15 +517,12 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   // seen as much as a quarter darker from points near the block's foot: the spikes of
   // the Cornell demo, tests/pictures_test.cpp.)
   auto pass = [&](int count) {
-    // rows x columns strata: the square root's, or 2 x 1 for two rays
-    const int rows = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(count)))), 1, 16);
-    const int columns = count == 2 ? 1 : rows;
-    const int side = std::max(rows, count == 2 ? 2 : rows);
+    int side = 1, columns = 1;
+    strata(count, side, columns);
     int n = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < columns; ++j) {
-        const Vec3d t = group ? group_sender_point((i + rng.uniform()) / side, (j + rng.uniform()) / columns, rng.uniform())
-                              : point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / columns);
+        const Vec3d t = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / columns);
         if (OpenMesh::dot(normal, t - x) > 0) targets[n++] = t;
       }
     visible += visibility_->visible_count(x, normal, targets, n, sender.normal);

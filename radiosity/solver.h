@@ -399,14 +399,21 @@ class Solver {
   std::vector<Rgb> sender_member_unshot_;     // what each held before the shot
   Vec3d sender_centre_;                       // the current patch or group sender's sphere
   double sender_radius_ = 0;
-  // A point on the current group sender for uniform numbers u (which member) and v, w
-  // (where in it).
+  // A point on the current group sender for uniform numbers u (which member, by weight
+  // and area) and v, w (where in it).
   Vec3d group_sender_point(double u, double v, double w) const;
-  // Lambert's closed form from x (normal n) to the current group sender, weighted; a
+  // F from x (normal n) to the current group sender with rays (seeded by `key`): each
+  // patch's term of group_closed_form() times the fraction of its rays that arrive, the
+  // rays drawn among the patches in proportion to their terms at x (so a point that
+  // sees one patch of the group and not the other gets that patch's light, however
+  // their areas compare).
+  double group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded) const;
+  // Lambert's closed form from x (normal n) to the current group sender, weighted (each
+  // patch's term in `terms`, when given, sender_members_.size() of them); a
   // patch at least kMemberFar of its radii away, wholly above x's horizon, counts by the
   // point-to-area form A cos cos / (pi r^2) instead (relative error about 0.25%, 0.5% at
   // 8 radii: measured against numerical integration over a right triangle).
-  double group_closed_form(const Vec3d& x, const Vec3d& n) const;
+  double group_closed_form(const Vec3d& x, const Vec3d& n, double* terms = nullptr) const;
   static constexpr double kMemberFar = 12.0;
 
   // Face clusters (SolveOptions::cluster_area; solver_clusters.cpp). A cluster far from

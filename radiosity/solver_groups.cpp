@@ -82,21 +82,81 @@ Vec3d Solver::group_sender_point(double u, double v, double w) const {
   return point_on_triangle(sender_members_[k].corners, v, w);
 }
 
-double Solver::group_closed_form(const Vec3d& x, const Vec3d& n) const {
+double Solver::group_closed_form(const Vec3d& x, const Vec3d& n, double* terms) const {
   const Vec3d& normal = patches_[sender_].normal;
   double f = 0;
-  for (const SenderMember& m : sender_members_) {
-    if (m.weight == 0) continue;
-    const Vec3d d = m.centroid - x;
-    const double r2 = d.sqrnorm();
-    const double above = OpenMesh::dot(n, d), facing = -OpenMesh::dot(normal, d);
-    if (r2 > kMemberFar * kMemberFar * m.radius * m.radius && above > m.radius) {
-      if (facing > 0) f += m.weight * m.area * above * facing / (M_PI * r2 * r2);
-    } else {
-      f += m.weight * shaped_closed_form(x, n, m.corners, m.centroid, m.radius, m.area, normal, m.shape);
+  for (std::size_t k = 0; k < sender_members_.size(); ++k) {
+    const SenderMember& m = sender_members_[k];
+    double term = 0;
+    if (m.weight != 0) {
+      const Vec3d d = m.centroid - x;
+      const double r2 = d.sqrnorm();
+      const double above = OpenMesh::dot(n, d), facing = -OpenMesh::dot(normal, d);
+      if (r2 > kMemberFar * kMemberFar * m.radius * m.radius && above > m.radius)
+        term = facing > 0 ? m.weight * m.area * above * facing / (M_PI * r2 * r2) : 0.0;
+      else
+        term = m.weight * shaped_closed_form(x, n, m.corners, m.centroid, m.radius, m.area, normal, m.shape);
     }
+    if (terms) terms[k] = term;
+    f += term;
   }
   return std::max(0.0, f);
+}
+
+double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded) const {
+  constexpr std::size_t kLocal = 32;
+  double local[kLocal];
+  std::vector<double> heap;
+  double* term = local;
+  if (sender_members_.size() > kLocal) {
+    heap.resize(sender_members_.size());
+    term = heap.data();
+  }
+  const double f = group_closed_form(x, n, term);
+  if (unoccluded) *unoccluded = f;
+  if (!(f > 0)) return 0.0;
+  // Rays go to patches drawn by |term| (T their sum); each counts with its term's sign,
+  // so that T times the mean is the sum of the terms' visible parts.
+  double total = 0;
+  for (std::size_t k = 0; k < sender_members_.size(); ++k) total += std::abs(term[k]);
+  Rng rng{mix(options_.seed ^ mix((key << 32) ^ sender_))};
+  int hits = 0, cast = 0;
+  double signed_hits = 0;
+  Vec3d plus[256], minus[256];  // targets on patches whose term is positive, negative
+  const Vec3d& front = patches_[sender_].normal;
+  auto pass = [&](int count) {
+    int rows = 1, columns = 1;
+    strata(count, rows, columns);
+    int n_plus = 0, n_minus = 0;
+    for (int i = 0; i < rows; ++i) {
+      const double at = (i + rng.uniform()) / rows * total;
+      double running = 0;
+      std::size_t k = 0;
+      for (; k + 1 < sender_members_.size(); ++k) {
+        running += std::abs(term[k]);
+        if (running > at) break;
+      }
+      while (k > 0 && term[k] == 0) --k;  // rounding at the end: the last patch with a term
+      for (int j = 0; j < columns; ++j) {
+        const Vec3d t = point_on_triangle(sender_members_[k].corners, rng.uniform(), (j + rng.uniform()) / columns);
+        if (OpenMesh::dot(n, t - x) > 0) {
+          if (term[k] < 0)
+            minus[n_minus++] = t;
+          else
+            plus[n_plus++] = t;
+        }
+      }
+    }
+    const int seen_plus = n_plus > 0 ? visibility_->visible_count(x, n, plus, n_plus, front) : 0;
+    const int seen_minus = n_minus > 0 ? visibility_->visible_count(x, n, minus, n_minus, front) : 0;
+    hits += seen_plus + seen_minus;
+    signed_hits += seen_plus - seen_minus;
+    cast += n_plus + n_minus;
+  };
+  pass(options_.min_rays);
+  if (hits != 0 && hits != cast) pass(options_.max_rays);
+  if (cast == 0) return f;  // the group lies (all but) behind x's plane
+  return std::max(0.0, total * signed_hits / cast);
 }
 
 }  // namespace dynrad::rad

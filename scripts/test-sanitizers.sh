@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds the test
-# programs (dynrad_tests, path_tracer_tests) and the dynrad command line they run (clang,
+# programs (dynrad_tests, path_tracer_tests, mesh_tracer_tests) and the dynrad command line they run (clang,
 # -O1, assertions on) into build-fuzz, then runs the tests with ctest. The first sanitizer error fails its test
 # (halt_on_error; the dynrad processes the tests start inherit the same options).
 #
@@ -41,7 +41,7 @@ scripts/install-deps.sh
 # serves the tests and the fuzz targets (a second sanitized build of the library cost
 # CI about six minutes).
 scripts/configure-reliability.sh
-cmake --build build-fuzz --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests
+cmake --build build-fuzz --parallel "$(nproc)" --target dynrad dynrad_tests path_tracer_tests mesh_tracer_tests
 
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
