@@ -215,8 +215,9 @@ class Solver {
   };
 
   std::uint32_t brightest_patch() const { return brightest_; }
-  // One pass over the patches after each shot (and before the first): the unshot totals
-  // and the brightest patch, which the next shot sends from.
+  // After each shot (and before the first): the unshot totals and the brightest sender,
+  // which the next shot sends from. Only the senders the shot changed are looked at
+  // again (mark_surveyed()); see "Survey" below.
   void survey_patches();
   // The patches sender i's shot must visit: all others but those SolveOptions::cull
   // rules out. Appends their roots to `roots`; counts in the report.
@@ -535,6 +536,29 @@ class Solver {
   Rgb luminaire_unshot_;                           // colour x flux of those that have not
   double emitted_total_ = 0;
   std::uint32_t brightest_ = 0;  // see survey_patches()
+
+  // Survey: what survey_patches() sums over the senders (groups of patches, then face
+  // clusters; a sender's "unit" is its index in that order), kept in a segment tree
+  // whose leaves are the units. A shot changes the sender and the receivers it lit, so
+  // only their leaves and those leaves' ancestors are summed again: a pass over every
+  // sender after every shot was a fifth of the 4-storey office building's solve, and
+  // grew with the building. Each node joins its two children in one order, so the sums
+  // are the same for any number of threads; ties go to the lower unit.
+  struct Survey {
+    Rgb unshot, staying;  // power (x area), and the part of it that will not leave
+    double magnitude = 0, best_power = -1;
+    std::uint32_t best = 0;  // the sender id of the unit with the most |unshot| power
+  };
+  static Survey join(Survey left, const Survey& right);
+  Survey survey_unit(std::size_t unit, bool open) const;
+  std::uint32_t unit_of_sender(std::uint32_t id) const;  // a patch (its group) or a cluster
+  std::uint32_t unit_of_receiver(std::uint32_t patch) const;  // its group, or its cluster
+  void mark_surveyed(std::uint32_t unit);  // changed: summed again at the next survey
+  std::vector<Survey> survey_tree_;        // node 1 the root; leaves from survey_leaves_
+  std::size_t survey_leaves_ = 0;
+  std::vector<std::uint32_t> survey_dirty_;
+  std::vector<char> survey_marked_;
+  bool survey_built_ = false, survey_open_ = false;
   double total_area_ = 0;
   Rgb reflectance_area_;  // sum over patches of reflectance x area
   double unshot_magnitude_ = 0;

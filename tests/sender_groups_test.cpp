@@ -113,10 +113,8 @@ TEST(PlaneGroups, SliversJoinAWholeNeighbourInTheirPlaneAndMaterial) {
 }
 
 // A room whose floor and one wall are cut into slivers where a skirting board stands
-// against the wall (imprinting), lit by its ceiling, solved to 1e-4 unshot with
-// progressive refinement (no refinement of receivers, so both solves have the same
-// mesh): with sender groups and without, every vertex gets the same radiosity.
-TEST(SenderGroups, SendExactlyTheLightOfTheirPatches) {
+// against the wall (imprinting), lit by its ceiling.
+SceneBuilder skirted_room() {
   SceneBuilder b;
   const std::uint32_t walls = b.material("walls", 0.6), floor = b.material("floor", 0.3);
   const std::uint32_t ceiling = b.material("ceiling", 0.7, 10.0), skirting = b.material("skirting", 0.5);
@@ -124,6 +122,32 @@ TEST(SenderGroups, SendExactlyTheLightOfTheirPatches) {
   b.rectangle(0, 0, 4, 3, 0, +1, floor);
   b.rectangle(0, 0, 4, 3, 2.5, -1, ceiling);
   b.box({0.3, 0, 0}, {3.7, 0.015, 0.08}, skirting);  // against the wall y = 0, on the floor
+  return b;
+}
+
+rad::Solver::Output solve_room(const SceneBuilder& b, const rad::SolveOptions& given, rad::SolveReport* report) {
+  LoadedScene scene = load_soup(b.soup(), "groups room");
+  SceneMesh& mesh = *scene.mesh;
+  rad::RefineSettings refine;
+  refine.method = rad::Method::progressive;
+  rad::SolveOptions options;
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
+  options.converge = given.converge;
+  options.seed = given.seed;
+  options.group_radius = given.group_radius < 0 ? options.group_radius : given.group_radius;
+  options.threads = given.threads;
+  make_patches(mesh, applied.patch_size);
+  ElementHierarchy hierarchy(mesh, refinement_for_patch_size(applied.patch_size));
+  rad::Solver solver(mesh, hierarchy, options, refine);
+  *report = solver.run();
+  return solver.output();
+}
+
+// The skirted room solved to 1e-4 unshot with
+// progressive refinement (no refinement of receivers, so both solves have the same
+// mesh): with sender groups and without, every vertex gets the same radiosity.
+TEST(SenderGroups, SendExactlyTheLightOfTheirPatches) {
+  const SceneBuilder b = skirted_room();
   // Runs: no groups; no groups with another seed (how far rays alone move a value);
   // groups.
   struct Run {
@@ -134,20 +158,12 @@ TEST(SenderGroups, SendExactlyTheLightOfTheirPatches) {
   std::vector<rad::Solver::Output> out;
   std::vector<rad::SolveReport> reports;
   for (const Run& run : runs) {
-    LoadedScene scene = load_soup(b.soup(), "groups room");
-    SceneMesh& mesh = *scene.mesh;
-    rad::RefineSettings refine;
-    refine.method = rad::Method::progressive;
     rad::SolveOptions options;
-    const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
     options.converge = 1e-4;
     options.seed = run.seed;
-    if (!run.grouped) options.group_radius = 0;
-    make_patches(mesh, applied.patch_size);
-    ElementHierarchy hierarchy(mesh, refinement_for_patch_size(applied.patch_size));
-    rad::Solver solver(mesh, hierarchy, options, refine);
-    reports.push_back(solver.run());
-    out.push_back(solver.output());
+    options.group_radius = run.grouped ? -1 : 0;
+    reports.emplace_back();
+    out.push_back(solve_room(b, options, &reports.back()));
   }
   EXPECT_EQ(reports[0].sender_groups, 0u);
   ASSERT_GT(reports[2].sender_groups, 0u) << "the scene has no slivers to group";
@@ -182,6 +198,27 @@ TEST(SenderGroups, SendExactlyTheLightOfTheirPatches) {
   // measured: far members count by the point-to-area form, kMemberFar).
   EXPECT_LT(group_mean, 1e-3);
   EXPECT_LT(group_worst, 1.5 * seed_worst + 1e-3);
+}
+
+// Groups draw their rays from seeds of their own: one thread or two, the same bits.
+TEST(SenderGroups, SameAnswerOnAnyNumberOfThreads) {
+  const SceneBuilder b = skirted_room();
+  std::vector<rad::Solver::Output> out;
+  for (int threads : {1, 2}) {
+    rad::SolveOptions options;
+    options.converge = 1e-2;
+    options.group_radius = -1;
+    options.threads = threads;
+    rad::SolveReport report;
+    out.push_back(solve_room(b, options, &report));
+    ASSERT_GT(report.sender_groups, 0u);
+  }
+  ASSERT_EQ(out[0].radiosity.size(), out[1].radiosity.size());
+  for (std::size_t v = 0; v < out[0].radiosity.size(); ++v) {
+    EXPECT_EQ(out[0].radiosity[v].r, out[1].radiosity[v].r) << "vertex " << v;
+    EXPECT_EQ(out[0].radiosity[v].g, out[1].radiosity[v].g) << "vertex " << v;
+    EXPECT_EQ(out[0].radiosity[v].b, out[1].radiosity[v].b) << "vertex " << v;
+  }
 }
 
 }  // namespace
