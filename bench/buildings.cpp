@@ -46,7 +46,7 @@ Result solve(const std::string& name, const std::string& scene, double triangles
   Result r;
   r.name = name;
   r.triangles = triangles;
-  const fs::path report = kWork / (name + ".json");
+  const fs::path report = kWork / (name + "_report.json");  // not name.json: the scene
   std::vector<std::string> argv = {DYNRAD_CLI, "solve", scene, "-o", (kWork / (name + ".ply")).string(), "--report",
                                    report.string()};
   argv.insert(argv.end(), extra.begin(), extra.end());

@@ -67,6 +67,21 @@ bool Solver::sender_near(const Bounds& box) const {
 
 ReceiverTree::Seen Solver::test_node(std::uint32_t node) const {
   const ReceiverTree::Node& n = tree_.node(node);
+  if (options_.cull && !is_luminaire(sender_) && !is_cluster(sender_)) {
+    // Exact, as receiving_patches() culls one patch: the whole box behind or on the
+    // sending patch's plane (a group's patches share it). Without it, the storeys above
+    // a ceiling were opened down to their leaves, their samples all facing away (too
+    // few to say), and every patch there judged one by one: a cost per shot that grew
+    // with the building (the 4-storey office: 38,000 patches a shot).
+    const Patch& p = patches_[sender_];
+    bool in_front = false;
+    for (int corner = 0; corner < 8 && !in_front; ++corner) {
+      const Vec3d c((corner & 1) ? n.bounds.hi[0] : n.bounds.lo[0], (corner & 2) ? n.bounds.hi[1] : n.bounds.lo[1],
+                    (corner & 4) ? n.bounds.hi[2] : n.bounds.lo[2]);
+      in_front = OpenMesh::dot(p.normal, c - p.corners[0]) > 0;
+    }
+    if (!in_front) return ReceiverTree::Seen::hidden;
+  }
   std::uint64_t state = mix(options_.seed ^ mix(0x7EE5000000000ull + node) ^ mix(report_.iterations + 1));
   int facing = 0, visible = 0;
   for (std::uint32_t s = n.first_sample; s < n.first_sample + n.sample_count; ++s) {
