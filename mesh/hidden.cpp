@@ -134,9 +134,10 @@ class HiddenFinder {
   // point, over 4 pi, is 1 inside it (facing out), 0 outside.
   void find_inside_solids() {
     // Which solids' boxes hold which tested pieces' front points, found by CGAL's box
-    // intersection (a pass over every solid for every piece grew with the square of the
-    // building: 8 storeys of offices, 50,000 solids). Then, per piece and in solid order,
-    // as before, the winding number of each solid about its point.
+    // intersection rather than by a pass over every solid per piece. Then, per piece and
+    // in solid order, the winding number of each such solid about its point (the cost
+    // that is left: a closed surface spanning the building, such as facades joined at
+    // corner lines storey over storey, is summed for every piece inside its box).
     std::vector<Box> points, solids;
     std::vector<Vec3d> front(pieces_.size());
     for (std::uint32_t p = 0; p < pieces_.size(); ++p) {

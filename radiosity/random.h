@@ -39,6 +39,21 @@ inline void strata(int count, int& rows, int& columns) {
   columns = count == 2 ? 1 : rows;
 }
 
+// An index drawn in proportion to nonnegative weights: the first k whose running sum
+// weight(0) + ... + weight(k) exceeds `target` (uniform in [0, their total)); rounding
+// at the end gives the last index with a weight above zero.
+template <class Weight>
+std::size_t pick_by_weight(std::size_t count, double target, const Weight& weight) {
+  double running = 0;
+  std::size_t k = 0;
+  for (; k + 1 < count; ++k) {
+    running += weight(k);
+    if (running > target) break;
+  }
+  while (k > 0 && !(weight(k) > 0)) --k;
+  return k;
+}
+
 // Uniform in the triangle for (u, v) uniform in the unit square, kept a hundredth of
 // the way off the edges: a point on an edge lies in the neighbouring face's plane, and
 // a ray from there slips out through the seam.

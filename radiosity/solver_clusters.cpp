@@ -5,6 +5,8 @@
 
 #include "radiosity/random.h"
 
+#include <boost/container/small_vector.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -121,14 +123,7 @@ Rgb Solver::start_cluster_shot(std::uint32_t c) {
 double Solver::cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t key, bool rays,
                                    double* unoccluded) const {
   // Each part's term: share x cos cos / (pi r^2 + A).
-  constexpr std::size_t kLocal = 64;
-  double local[kLocal];
-  std::vector<double> heap;
-  double* term = local;
-  if (sender_parts_.size() > kLocal) {
-    heap.resize(sender_parts_.size());
-    term = heap.data();
-  }
+  boost::container::small_vector<double, 64> term(sender_parts_.size());
   double total = 0;
   for (std::size_t s = 0; s < sender_parts_.size(); ++s) {
     const SenderPart& part = sender_parts_[s];
@@ -149,14 +144,8 @@ double Solver::cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t
   auto pass = [&](int count) {
     for (int j = 0; j < count; ++j) {
       const double target = (j + uniform(state)) / count * total;
-      double running = 0;
-      std::size_t s = 0;
-      for (; s + 1 < sender_parts_.size(); ++s) {
-        running += term[s];
-        if (running > target) break;
-      }
-      while (s > 0 && term[s] <= 0) --s;  // rounding at the end: the last part with a term
-      const SenderPart& part = sender_parts_[s];
+      const SenderPart& part =
+          sender_parts_[pick_by_weight(sender_parts_.size(), target, [&](std::size_t s) { return term[s]; })];
       visible += !visibility_->occluded(x, n, part.point, part.normal);
       ++cast;
     }

@@ -5,6 +5,8 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/random.h"
 
+#include <boost/container/small_vector.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -104,15 +106,8 @@ double Solver::group_closed_form(const Vec3d& x, const Vec3d& n, double* terms) 
 }
 
 double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded) const {
-  constexpr std::size_t kLocal = 32;
-  double local[kLocal];
-  std::vector<double> heap;
-  double* term = local;
-  if (sender_members_.size() > kLocal) {
-    heap.resize(sender_members_.size());
-    term = heap.data();
-  }
-  const double f = group_closed_form(x, n, term);
+  boost::container::small_vector<double, 32> term(sender_members_.size());
+  const double f = group_closed_form(x, n, term.data());
   if (unoccluded) *unoccluded = f;
   if (!(f > 0)) return 0.0;
   // Rays go to patches drawn by |term| (T their sum); each counts with its term's sign,
@@ -130,13 +125,8 @@ double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d&
     int n_plus = 0, n_minus = 0;
     for (int i = 0; i < rows; ++i) {
       const double at = (i + rng.uniform()) / rows * total;
-      double running = 0;
-      std::size_t k = 0;
-      for (; k + 1 < sender_members_.size(); ++k) {
-        running += std::abs(term[k]);
-        if (running > at) break;
-      }
-      while (k > 0 && term[k] == 0) --k;  // rounding at the end: the last patch with a term
+      const std::size_t k =
+          pick_by_weight(sender_members_.size(), at, [&](std::size_t m) { return std::abs(term[m]); });
       for (int j = 0; j < columns; ++j) {
         const Vec3d t = point_on_triangle(sender_members_[k].corners, rng.uniform(), (j + rng.uniform()) / columns);
         if (OpenMesh::dot(n, t - x) > 0) {
