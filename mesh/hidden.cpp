@@ -3,6 +3,7 @@
 #include "mesh/hidden.h"
 
 #include "mesh/ray_cast.h"
+#include "mesh/winding_number.h"
 
 #include <CGAL/box_intersection_d.h>
 
@@ -135,9 +136,11 @@ class HiddenFinder {
   void find_inside_solids() {
     // Which solids' boxes hold which tested pieces' front points, found by CGAL's box
     // intersection rather than by a pass over every solid per piece. Then, per piece and
-    // in solid order, the winding number of each such solid about its point (the cost
-    // that is left: a closed surface spanning the building, such as facades joined at
-    // corner lines storey over storey, is summed for every piece inside its box).
+    // in solid order, the winding number of each such solid about its point, through a
+    // tree over the solid's triangles (mesh/winding_number.h): a closed surface spanning
+    // the building, such as facades joined at corner lines storey over storey, holds
+    // most pieces in its box, and summing all its triangles for each made the load grow
+    // with the square of the building.
     std::vector<Box> points, solids;
     std::vector<Vec3d> front(pieces_.size());
     for (std::uint32_t p = 0; p < pieces_.size(); ++p) {
@@ -158,21 +161,21 @@ class HiddenFinder {
     CGAL::box_intersection_d(points.begin(), points.end(), solids.begin(), solids.end(),
                              [&](const Box& a, const Box& b) { pairs.emplace_back(a.info(), b.info()); });
     std::sort(pairs.begin(), pairs.end());
+    // A solid with a few triangles is summed directly; a tree pays only past that.
+    constexpr std::size_t kTreeFrom = 64;
+    std::vector<std::unique_ptr<WindingNumber>> trees(in_.solids.size());
     for (const auto& [p, s] : pairs) {
       Piece& piece = pieces_[p];
       if (piece.state != State::visible) continue;
-      const Vec3d& x = front[p];
-      double solid_angle = 0;
-      for (const auto& t : in_.solids[s]) {
-        // Van Oosterom and Strackee's formula for a triangle's solid angle.
-        const Vec3d a = t[0] - x, b = t[1] - x, c = t[2] - x;
-        const double la = a.norm(), lb = b.norm(), lc = c.norm();
-        const double numerator = OpenMesh::dot(a, OpenMesh::cross(b, c));
-        const double denominator =
-            la * lb * lc + OpenMesh::dot(a, b) * lc + OpenMesh::dot(b, c) * la + OpenMesh::dot(c, a) * lb;
-        solid_angle += 2 * std::atan2(numerator, denominator);
+      const ClosedSurface& solid = in_.solids[s];
+      double turns;
+      if (solid.size() < kTreeFrom) {
+        turns = WindingNumber::exact(solid, front[p]);
+      } else {
+        if (!trees[s]) trees[s] = std::make_unique<WindingNumber>(solid);
+        turns = trees[s]->at(front[p]);
       }
-      if (solid_angle / (4 * M_PI) > 0.5) {
+      if (turns > 0.5) {
         piece.state = State::enclosed;
         ++report_.inside_solid_pieces;
       }
