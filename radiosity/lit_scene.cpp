@@ -23,6 +23,9 @@ void LitScene::prepare() {
   Bounds bounds;
   for (const Vec3d& p : positions) bounds.extend(p);
   diagonal = bounds.diagonal();
+  emitting.clear();
+  for (std::size_t f = 0; f < emission.size(); ++f)
+    if (!emission[f].is_zero()) emitting.push_back(static_cast<std::uint32_t>(f));
 }
 
 }  // namespace dynrad::rad

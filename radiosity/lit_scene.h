@@ -27,6 +27,7 @@ struct LitScene {
   // Built by prepare() from the triangles.
   std::unique_ptr<Visibility> visibility;
   double diagonal = 0;
+  std::vector<std::uint32_t> emitting;  // the triangles whose emission is not zero
   void prepare();
 };
 
