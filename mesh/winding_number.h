@@ -12,6 +12,10 @@
 // a surface is decided as exactly as before. The expansion's error falls with the
 // square of radius over distance: under two hundredths of a turn at the default, against a
 // decision made at one half.
+//
+// Written here: CGAL's point-in-solid test (Side_of_triangle_mesh) needs a manifold
+// mesh, and solids joined at an edge, whose winding numbers add, are not one; libigl,
+// which has fast winding numbers, is not a Debian package.
 #pragma once
 
 #include "mesh/types.h"
