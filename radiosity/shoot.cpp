@@ -305,9 +305,7 @@ bool Solver::shoot_once() {
       throw;
     }
     overlap.wait();
-    const std::size_t first_new = initialised_;
     initialise_new_elements();  // all of this level's new elements at once (values do not change in between)
-    if (refine_.method == Method::dynamic) restart_split_terminals(first_new, terminals, shot);
     for (ElementId q : passed) {
       const Element& el = hierarchy_.element(q);
       if (gathered_in_[q] != report_.iterations + 1) {  // dB, as in the decision pass

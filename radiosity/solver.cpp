@@ -955,34 +955,6 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
   });
 }
 
-void Solver::restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot) {
-  const std::size_t count = hierarchy_.element_count();
-  if (count == first || terminals.empty()) return;
-  std::sort(terminals.begin(), terminals.end());
-  std::vector<ElementId> affected;
-  std::vector<ElementId> source_of;
-  for (ElementId e = static_cast<ElementId>(first); e < count; ++e) {
-    ElementId source = hierarchy_.element(e).parent;
-    while (source >= first) source = hierarchy_.element(source).parent;
-    if (!std::binary_search(terminals.begin(), terminals.end(), source)) continue;
-    affected.push_back(e);
-    source_of.push_back(source);
-  }
-  if (affected.empty()) return;
-  compute_form_factors(affected);
-  parallel_for_index(affected.size(), 64, [&](std::size_t n) {
-    const ElementId e = affected[n], source = source_of[n];
-    const Element& el = hierarchy_.element(e);
-    const Patch& patch = patches_[el.patch];
-    std::array<Rgb, 3> at_source;  // this shot's dB at the source's corners, as it was inherited
-    for (int k = 0; k < 3; ++k) at_source[k] = patch.reflectance * shot * form_factor(source, k);
-    for (int k = 0; k < 3; ++k) {
-      const Rgb inherited = interpolate(source, at_source, hierarchy_.position(el.corners[k]));
-      value_[e][k] = value_[e][k] - inherited + patch.reflectance * shot * form_factor(e, k);
-    }
-  });
-}
-
 void Solver::push_down(ElementId q, const std::array<Rgb, 6>& delta) {
   if (hierarchy_.element(q).is_leaf()) return;
   for (int k = 0; k < 6; ++k) pending_[q][k] += delta[k];

@@ -315,12 +315,6 @@ class Solver {
   static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
-  // Elements from `first` on whose nearest older ancestor is one of this shot's
-  // `terminals` were split after the shot had stopped there (a neighbour's refinement,
-  // kept conforming, reached it): they took this shot's dB as a line between that
-  // ancestor's corners, which misses how F bends (beside a neighbouring wall, by a tenth
-  // of B). They take it exactly at their own corners instead.
-  void restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot);
   // Values of elements first to count - 1, each from its nearest ancestor before first.
   void initialise_values(ElementId first, std::size_t count);
   // Push-down: dB given at q's corners and edge midpoints reaches every element below

@@ -174,31 +174,5 @@ TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
   EXPECT_LT(mean, 0.005);
 }
 
-// An element split by a neighbour's refinement after a shot had stopped at it once took
-// that shot as a line between the corners of the element it came from, never corrected
-// after: beside a neighbouring wall F bends within a tenth of a metre, and this furnace,
-// shot to convergence with the command line's defaults, kept a wall vertex on its
-// ceiling edge 2.9% above the closed form (below it the lines from push-down and from
-// splits leave about 1%). Such elements now take the shot at their own corners.
-TEST(ErrorEstimate, ElementsSplitAfterAShotStoppedThereTakeItExactly) {
-  test::TempDir dir;
-  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
-  const std::string model = dir.write("furnace.obj",
-                                      "mtllib furnace.mtl\nusemtl glow\n"
-                                      "v 0 0 0\nv 2 0 0\nv 2 1.5 0\nv 0 1.5 0\nv 0 0 1\nv 2 0 1\nv 2 1.5 1\nv 0 1.5 1\n"
-                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
-  rad::SettingsRequest converged;
-  converged.converge = 1e-5;
-  Solved s = solve_like_the_command_line(model, Quality::normal, converged);
-  const rad::Solver::Output out = s.solver->output();
-  double worst_high = 0, mean = 0;
-  for (const Rgb& b : out.radiosity) {
-    worst_high = std::max(worst_high, (b.g - 2.0) / 2.0);
-    mean += std::abs(b.g - 2.0) / 2.0 / static_cast<double>(out.radiosity.size());
-  }
-  EXPECT_LT(worst_high, 0.015);
-  EXPECT_LT(mean, 0.002);
-}
-
 }  // namespace
 }  // namespace dynrad
