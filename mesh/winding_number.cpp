@@ -22,67 +22,69 @@ double triangle_solid_angle(const std::array<Vec3d, 3>& t, const Vec3d& x) {
 
 }  // namespace
 
+// What the build needs per triangle, by its original index; `order` is the tree's
+// permutation of those indices, each node a range of it.
+struct WindingNumber::Build {
+  std::vector<Vec3d> centroid, area;
+  std::vector<std::uint32_t> order;
+};
+
 WindingNumber::WindingNumber(const std::vector<std::array<Vec3d, 3>>& triangles, const WindingNumberOptions& options)
-    : options_(options), triangles_(triangles) {
+    : options_(options) {
   options_.leaf_triangles = std::max(options_.leaf_triangles, 1);
-  centroid_.resize(triangles_.size());
-  area_.resize(triangles_.size());
-  for (std::size_t i = 0; i < triangles_.size(); ++i) {
-    const auto& t = triangles_[i];
-    centroid_[i] = (t[0] + t[1] + t[2]) / 3.0;
-    area_[i] = OpenMesh::cross(t[1] - t[0], t[2] - t[0]) * 0.5;
+  if (triangles.empty()) return;
+  Build b;
+  b.centroid.resize(triangles.size());
+  b.area.resize(triangles.size());
+  b.order.resize(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    b.centroid[i] = (t[0] + t[1] + t[2]) / 3.0;
+    b.area[i] = OpenMesh::cross(t[1] - t[0], t[2] - t[0]) * 0.5;
   }
-  if (triangles_.empty()) return;
-  nodes_.reserve(2 * triangles_.size() / options_.leaf_triangles + 2);
-  build(0, static_cast<std::uint32_t>(triangles_.size()));
+  std::iota(b.order.begin(), b.order.end(), 0u);
+  nodes_.reserve(2 * triangles.size() / options_.leaf_triangles + 2);
+  build(b, triangles, 0, static_cast<std::uint32_t>(triangles.size()));
+  triangles_.reserve(triangles.size());
+  for (std::uint32_t i : b.order) triangles_.push_back(triangles[i]);  // leaves' ranges in tree order
 }
 
-// Splits at the median centroid along the widest axis of the centroids' box, reordering
-// the triangles in place; returns the node's index.
-std::uint32_t WindingNumber::build(std::uint32_t first, std::uint32_t count) {
+// Splits at the median centroid along the widest axis of the centroids' box (ties by
+// index, so the tree is the same on any machine); returns the node's index.
+std::uint32_t WindingNumber::build(Build& b, const std::vector<std::array<Vec3d, 3>>& triangles, std::uint32_t first,
+                                   std::uint32_t count) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   Node node;
   node.first = first;
   node.count = count;
+  const auto range_begin = b.order.begin() + first, range_end = range_begin + count;
   double total = 0;
-  Vec3d weighted(0, 0, 0), lo = centroid_[first], hi = centroid_[first];
-  for (std::uint32_t i = first; i < first + count; ++i) {
-    const double a = area_[i].norm();
+  Vec3d weighted(0, 0, 0), lo = b.centroid[*range_begin], hi = lo;
+  for (auto it = range_begin; it != range_end; ++it) {
+    const double a = b.area[*it].norm();
     total += a;
-    weighted += centroid_[i] * a;
-    node.area += area_[i];
-    lo.minimize(centroid_[i]);
-    hi.maximize(centroid_[i]);
+    weighted += b.centroid[*it] * a;
+    node.area += b.area[*it];
+    lo.minimize(b.centroid[*it]);
+    hi.maximize(b.centroid[*it]);
   }
   node.centre = total > 0 ? weighted / total : (lo + hi) * 0.5;
-  for (std::uint32_t i = first; i < first + count; ++i) {
-    const Vec3d d = centroid_[i] - node.centre;
+  for (auto it = range_begin; it != range_end; ++it) {
+    const Vec3d d = b.centroid[*it] - node.centre;
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) node.spread[3 * r + c] += d[r] * area_[i][c];
-    for (const Vec3d& p : triangles_[i]) node.radius = std::max(node.radius, (p - node.centre).norm());
+      for (int c = 0; c < 3; ++c) node.spread[3 * r + c] += d[r] * b.area[*it][c];
+    for (const Vec3d& p : triangles[*it]) node.radius = std::max(node.radius, (p - node.centre).norm());
   }
   if (count > static_cast<std::uint32_t>(options_.leaf_triangles)) {
     const Vec3d extent = hi - lo;
     const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0 : (extent[1] >= extent[2] ? 1 : 2);
-    std::vector<std::uint32_t> order(count);
-    std::iota(order.begin(), order.end(), first);
     const std::uint32_t half = count / 2;
-    std::nth_element(order.begin(), order.begin() + half, order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return centroid_[a][axis] < centroid_[b][axis] || (centroid_[a][axis] == centroid_[b][axis] && a < b);
+    std::nth_element(range_begin, range_begin + half, range_end, [&](std::uint32_t x, std::uint32_t y) {
+      return b.centroid[x][axis] < b.centroid[y][axis] || (b.centroid[x][axis] == b.centroid[y][axis] && x < y);
     });
-    std::vector<std::array<Vec3d, 3>> t(count);
-    std::vector<Vec3d> g(count), v(count);
-    for (std::uint32_t k = 0; k < count; ++k) {
-      t[k] = triangles_[order[k]];
-      g[k] = centroid_[order[k]];
-      v[k] = area_[order[k]];
-    }
-    std::copy(t.begin(), t.end(), triangles_.begin() + first);
-    std::copy(g.begin(), g.end(), centroid_.begin() + first);
-    std::copy(v.begin(), v.end(), area_.begin() + first);
-    node.left = build(first, half);
-    node.right = build(first + half, count - half);
+    node.left = build(b, triangles, first, half);
+    node.right = build(b, triangles, first + half, count - half);
   }
   nodes_[index] = node;
   return index;

@@ -51,12 +51,13 @@ class WindingNumber {
     std::uint32_t left = 0, right = 0;   // children; left == 0 for a leaf
   };
 
-  std::uint32_t build(std::uint32_t first, std::uint32_t count);
+  struct Build;
+  std::uint32_t build(Build& b, const std::vector<std::array<Vec3d, 3>>& triangles, std::uint32_t first,
+                      std::uint32_t count);
   double node_solid_angle(const Node& node, const Vec3d& x) const;
 
   WindingNumberOptions options_;
   std::vector<std::array<Vec3d, 3>> triangles_;  // in tree order
-  std::vector<Vec3d> centroid_, area_;           // per triangle, in tree order
   std::vector<Node> nodes_;
 };
 
