@@ -14,15 +14,7 @@ double sum_of(const Rgb& c) { return c.r + c.g + c.b; }
 ErrorEstimate Solver::estimate_error() {
   flush_all();  // every leaf holds what was pushed down above it
   const Rgb ambient_now = ambient();
-  const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
-  // With over-relaxation the unshot light has both signs: the ambient term (its sum)
-  // can be near 0 while much is yet to move. Its error is then that of its magnitude.
-  Rgb ambient_error = ambient_now;
-  const double signed_total = std::abs(sum_of(report_.energy.unshot));
-  if (options_.overshoot != 1.0 && signed_total > 0) {
-    const double scale = unshot_magnitude_ / signed_total;
-    ambient_error = Rgb(std::abs(ambient_now.r), std::abs(ambient_now.g), std::abs(ambient_now.b)) * scale;
-  }
+  const Rgb ambient_error = unshot_error_radiosity();
   struct Sums {
     double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
   };
@@ -40,15 +32,8 @@ ErrorEstimate Solver::estimate_error() {
           const auto& v = value_[e];
           const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
           s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
-          s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance() * unshot_weight;
-          if (el.parent == kNoElement) continue;
-          const Element& parent = hierarchy_.element(el.parent);
-          for (int k = 0; k < 3; ++k) {
-            const VertexHandle c = el.corners[k];
-            if (c == parent.corners[0] || c == parent.corners[1] || c == parent.corners[2]) continue;
-            const Rgb interpolated = interpolate(el.parent, value_[el.parent], hierarchy_.position(c));
-            s.surplus_area += el.area * std::abs(v[k].luminance() - interpolated.luminance());
-          }
+          s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance();
+          s.surplus_area += el.area * surplus(e);
         }
         return s;
       },
@@ -64,6 +49,34 @@ ErrorEstimate Solver::estimate_error() {
     out.discretisation = 0.5 * sums.surplus_area / sums.radiosity_area;
   }
   return out;
+}
+
+Rgb Solver::unshot_error_radiosity() {
+  const Rgb ambient_now = ambient();
+  const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
+  // With over-relaxation the unshot light has both signs: the ambient term (its sum)
+  // can be near 0 while much is yet to move. Its error is then that of its magnitude.
+  Rgb ambient_error = ambient_now;
+  const double signed_total = std::abs(sum_of(report_.energy.unshot));
+  if (options_.overshoot != 1.0 && signed_total > 0) {
+    const double scale = unshot_magnitude_ / signed_total;
+    ambient_error = Rgb(std::abs(ambient_now.r), std::abs(ambient_now.g), std::abs(ambient_now.b)) * scale;
+  }
+  return ambient_error * unshot_weight;
+}
+
+double Solver::surplus(ElementId e) const {
+  const Element& el = hierarchy_.element(e);
+  if (el.parent == kNoElement) return 0.0;
+  const Element& parent = hierarchy_.element(el.parent);
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const VertexHandle c = el.corners[k];
+    if (c == parent.corners[0] || c == parent.corners[1] || c == parent.corners[2]) continue;
+    const Rgb interpolated = interpolate(el.parent, value_[el.parent], hierarchy_.position(c));
+    sum += std::abs(value_[e][k].luminance() - interpolated.luminance());
+  }
+  return sum;
 }
 
 }  // namespace dynrad::rad

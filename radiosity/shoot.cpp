@@ -182,6 +182,8 @@ bool Solver::shoot_once() {
     // A chunk has at least 4 elements: joining a chunk costs about as much as deciding
     // for a few elements, more when another core wrote it (on the 1990 room's 2.5 m
     // patches, chunks of one element spent 8% of a 2-thread solve in the join).
+    compute_form_factors(level);
+    settle_visibility(level);
     const std::size_t chunk = std::max<std::size_t>(4, (level.size() + kChunks - 1) / kChunks);
     const std::size_t chunks = (level.size() + chunk - 1) / chunk;
     if (walk_chunks_.size() < chunks) walk_chunks_.resize(chunks);
@@ -305,7 +307,9 @@ bool Solver::shoot_once() {
       throw;
     }
     overlap.wait();
+    const std::size_t first_new = initialised_;
     initialise_new_elements();  // all of this level's new elements at once (values do not change in between)
+    if (refine_.method == Method::dynamic) restart_split_terminals(first_new, terminals, shot);
     for (ElementId q : passed) {
       const Element& el = hierarchy_.element(q);
       if (gathered_in_[q] != report_.iterations + 1) {  // dB, as in the decision pass

@@ -115,6 +115,11 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
       patches_[p].detail = facet[p] < kDetailFacet * patch_area_;
   }
   build_tree();
+  {
+    std::vector<SphereIndex::Ball> balls(patches_.size());
+    for (std::size_t p = 0; p < patches_.size(); ++p) balls[p] = {patches_[p].centre, patches_[p].radius};
+    patch_index_ = SphereIndex(balls);
+  }
   survey_patches();
   // Every existing element starts at its patch's emission.
   value_.resize(hierarchy_.element_count());
@@ -463,13 +468,54 @@ void Solver::compute_corner_form_factors(ElementId e) {
     }
     const Receiver& r = receivers_[id];
     CornerFormFactor& f = form_factor_[id];
-    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded);
+    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded, {false, &f.verdict});
     __atomic_store_n(stamp, done, __ATOMIC_RELEASE);
     beat();
   }
   if (!wait) return;
   for (std::uint32_t id : corner_receiver_[e])
     while (__atomic_load_n(&form_factor_shot_[id], __ATOMIC_ACQUIRE) != done) std::this_thread::yield();
+}
+
+void Solver::settle_visibility(const std::vector<ElementId>& elements) {
+  // Marked receivers are listed per chunk of elements and joined in order, so that the
+  // list (sorted, without repeats) is the same for any number of threads.
+  const std::size_t chunk = std::max<std::size_t>(64, (elements.size() + kChunks - 1) / kChunks);
+  const std::size_t chunks = (elements.size() + chunk - 1) / chunk;
+  std::vector<std::vector<std::uint32_t>> marked(chunks);
+  parallel_for_index(chunks, 2, [&](std::size_t c) {
+    for (std::size_t n = c * chunk; n < std::min(elements.size(), (c + 1) * chunk); ++n) {
+      const auto& ids = corner_receiver_[elements[n]];
+      bool seen = false, hidden = false, mixed = false;
+      for (std::uint32_t id : ids) {
+        const RayVerdict v = form_factor_[id].verdict;
+        seen = seen || v == RayVerdict::seen;
+        hidden = hidden || v == RayVerdict::hidden;
+        mixed = mixed || v == RayVerdict::mixed;
+      }
+      if (!mixed && !(seen && hidden)) continue;
+      // Only where a wrong verdict would show: the sender's light there, unoccluded, is at
+      // least kSettleShare of what the corner holds (on the IFC house, casting again
+      // wherever corners disagreed cost a fifth of the solve).
+      const ElementId e = elements[n];
+      const double light = (patches_[hierarchy_.element(e).patch].reflectance * current_shot_).luminance();
+      for (int k = 0; k < 3; ++k) {
+        const CornerFormFactor& f = form_factor_[ids[k]];
+        if ((f.verdict == RayVerdict::seen || f.verdict == RayVerdict::hidden) &&
+            light * f.unoccluded >= kSettleShare * value_[e][k].luminance())
+          marked[c].push_back(ids[k]);
+      }
+    }
+  });
+  std::vector<std::uint32_t> again;
+  for (const auto& m : marked) again.insert(again.end(), m.begin(), m.end());
+  std::sort(again.begin(), again.end());
+  again.erase(std::unique(again.begin(), again.end()), again.end());
+  parallel_for_index(again.size(), 8, [&](std::size_t n) {
+    const Receiver& r = receivers_[again[n]];
+    CornerFormFactor& f = form_factor_[again[n]];
+    f.visible = point_form_factor(r.vertex, r.point, patches_[r.patch].normal, sender_, &f.unoccluded, {true, &f.verdict});
+  });
 }
 
 void Solver::beat() {
@@ -536,12 +582,13 @@ double Solver::luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32
 }
 
 double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
-                                 double* unoccluded) const {
-  return point_form_factor_keyed(static_cast<std::uint64_t>(v.idx()), x, normal, sender_id, unoccluded);
+                                 double* unoccluded, const RayPlan& plan) const {
+  return point_form_factor_keyed(static_cast<std::uint64_t>(v.idx()), x, normal, sender_id, unoccluded, plan);
 }
 
 double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
-                                       double* unoccluded) const {
+                                       double* unoccluded, const RayPlan& plan) const {
+  if (plan.verdict) *plan.verdict = RayVerdict::none;
   if (is_luminaire(sender_id)) {
     double open = 0;
     const double seen =
@@ -551,7 +598,7 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   }
   if (is_cluster(sender_id)) return cluster_form_factor(x, normal, key, true, unoccluded);
   const Patch& sender = patches_[sender_id];
-  if (sender_id == sender_ && !sender_members_.empty()) return group_form_factor(key, x, normal, unoccluded);
+  if (sender_id == sender_ && !sender_members_.empty()) return group_form_factor(key, x, normal, unoccluded, plan);
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
                                                       sender.corners[2], sender.normal);
@@ -579,8 +626,10 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
     cast += n;
   };
   pass(options_.min_rays);
-  if (visible != 0 && visible != cast) pass(options_.max_rays);
+  const bool agreed = visible == 0 || visible == cast;
+  if (!agreed || plan.full) pass(options_.max_rays);
   if (cast == 0) return f;  // the sender lies (all but) behind the plane: f is about 0 anyway
+  if (plan.verdict) *plan.verdict = !agreed || plan.full ? RayVerdict::mixed : visible == 0 ? RayVerdict::hidden : RayVerdict::seen;
   return f * visible / cast;
 }
 
@@ -950,7 +999,94 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
       const Rgb mean = (p[0] + p[1] + p[2]) * (1.0 / 3);
       value_[e] = {mean, mean, mean};
     } else {
-      for (int k = 0; k < 3; ++k) value_[e][k] = interpolate(source, p, hierarchy_.position(el.corners[k]));
+      const Element& src = hierarchy_.element(source);
+      thread_local std::vector<std::uint32_t> scratch;
+      for (int k = 0; k < 3; ++k) {
+        const VertexHandle v = el.corners[k];
+        const Vec3d position = hierarchy_.position(v);
+        value_[e][k] = interpolate(source, p, position);
+        const bool new_vertex = v != src.corners[0] && v != src.corners[1] && v != src.corners[2];
+        if (new_vertex && refine_.near_field_start && refine_.method == Method::dynamic)
+          value_[e][k] += near_field_start(e, source, position, scratch);
+      }
+    }
+  });
+}
+
+Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& position,
+                             std::vector<std::uint32_t>& scratch) const {
+  const Element& src = hierarchy_.element(source);
+  const Patch& patch = patches_[src.patch];
+  const Vec3d& n = hierarchy_.normal(source);
+  const Vec3d centroid = hierarchy_.centroid(source);
+  double radius = 0;
+  Vec3d corner_point[3];
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d c = hierarchy_.position(src.corners[k]);
+    radius = std::max(radius, (c - centroid).norm());
+    // (not the corners' receivers: register_receivers() may be adding to them meanwhile;
+    // a step into the source as theirs are into some element at the vertex)
+    corner_point[k] = c + (centroid - c) * 1e-2;
+  }
+  // The new corner's evaluation point, as register_receivers() places it.
+  const Vec3d point = position + (hierarchy_.centroid(e) - position) * 1e-2;
+  const std::array<double, 3> l = barycentric(source, position);
+  scratch.clear();
+  patch_index_.near(point, radius, scratch);
+  // Only patches whose light could bend the start by kNearFieldShare of the value the
+  // line gives (F's bend is at most 1), and only within one radius of the source: on
+  // the IFC house, every patch within two radii of every new vertex cost a fifth of the
+  // solve.
+  const double line = interpolate(source, value_[source], position).luminance();
+  Rgb add;
+  for (std::uint32_t j : scratch) {
+    const Patch& s = patches_[j];
+    if (j == src.patch || s.shot.is_zero() || s.plane == patch.plane) continue;
+    if ((patch.reflectance * s.shot).luminance() < kNearFieldShare * line) continue;
+    auto f = [&](const Vec3d& x) { return point_to_triangle(x, n, s.corners[0], s.corners[1], s.corners[2], s.normal); };
+    const double bend = f(point) - (l[0] * f(corner_point[0]) + l[1] * f(corner_point[1]) + l[2] * f(corner_point[2]));
+    add += s.shot * bend;
+  }
+  return patch.reflectance * add;
+}
+
+void Solver::restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot) {
+  const std::size_t count = hierarchy_.element_count();
+  if (count == first || terminals.empty()) return;
+  std::sort(terminals.begin(), terminals.end());
+  std::vector<ElementId> affected;
+  std::vector<ElementId> source_of;
+  for (ElementId e = static_cast<ElementId>(first); e < count; ++e) {
+    ElementId source = hierarchy_.element(e).parent;
+    while (source >= first) source = hierarchy_.element(source).parent;
+    if (!std::binary_search(terminals.begin(), terminals.end(), source)) continue;
+    affected.push_back(e);
+    source_of.push_back(source);
+  }
+  parallel_for_index(affected.size(), 64, [&](std::size_t n) {
+    const ElementId e = affected[n], source = source_of[n];
+    const Element& el = hierarchy_.element(e);
+    const Element& src = hierarchy_.element(source);
+    const Patch& patch = patches_[el.patch];
+    std::array<Rgb, 3> at_source;  // this shot's dB at the source's corners, as it was inherited
+    std::array<double, 3> seen;    // and the fractions of the sender they see
+    for (int k = 0; k < 3; ++k) {
+      at_source[k] = patch.reflectance * shot * form_factor(source, k);
+      seen[k] = corner_form_factor(source, k).visible_fraction();
+    }
+    for (int k = 0; k < 3; ++k) {
+      const VertexHandle v = el.corners[k];
+      if (v == src.corners[0] || v == src.corners[1] || v == src.corners[2]) continue;  // exact already
+      // The sender's closed form at the new corner's evaluation point (the kernel, which
+      // bends beside a neighbouring surface), times the visible fraction interpolated
+      // from the source's corners (as at the push-down's midpoints: no rays, so no
+      // vertex is left to two rays' say).
+      const Vec3d position = hierarchy_.position(v);
+      const Vec3d point = receivers_[corner_receiver_[e][k]].point;
+      const std::array<double, 3> l = barycentric(source, position);
+      const double visible = l[0] * seen[0] + l[1] * seen[1] + l[2] * seen[2];
+      const Rgb exact = patch.reflectance * shot * (visible * sender_closed_form(point, hierarchy_.normal(e)));
+      value_[e][k] = value_[e][k] - interpolate(source, at_source, position) + exact;
     }
   });
 }
@@ -1122,6 +1258,8 @@ Solver::Output Solver::output(bool ambient_display) {
   out.emitter.assign(out.split.size(), 0);
   out.irradiance.assign(out.split.size(), Rgb());
   std::vector<int> count(out.split.size(), 0);
+  std::vector<double> surplus_at(out.split.size(), 0.0), unshot_at(out.split.size(), 0.0);
+  const Rgb unshot_error = unshot_error_radiosity();
   auto arriving = [](const Rgb& b, const Patch& p) {
     auto channel = [](double value, double e, double rho) { return rho > 0 ? (value - e) / rho : 0.0; };
     return Rgb(channel(b.r, p.emission.r, p.reflectance.r), channel(b.g, p.emission.g, p.reflectance.g),
@@ -1133,6 +1271,8 @@ Solver::Output Solver::output(bool ambient_display) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
     const Rgb extra = patches_[el.patch].reflectance * ambient_now;
+    const double surplus_here = surplus(e);
+    const double unshot_here = (patches_[el.patch].reflectance * unshot_error).luminance();
     int k = 0;
     for (auto v : mesh.fv_range(f)) {
       const auto node = out.split.corner[3 * f.idx() + k++];
@@ -1143,12 +1283,17 @@ Solver::Output Solver::output(bool ambient_display) {
         }
       ++count[node];
       out.emitter[node] = scene_.material(f).emits();
+      surplus_at[node] = std::max(surplus_at[node], surplus_here);
+      unshot_at[node] = std::max(unshot_at[node], unshot_here);
     }
   }
+  out.error.assign(out.split.size(), 0.0f);
   for (std::size_t i = 0; i < count.size(); ++i)
     if (count[i] > 0) {
       out.radiosity[i] = out.radiosity[i] * (1.0 / count[i]);
       out.irradiance[i] = out.irradiance[i] * (1.0 / count[i]);
+      const double b = out.radiosity[i].luminance();
+      if (b > 0) out.error[i] = static_cast<float>((0.5 * surplus_at[i] + unshot_at[i]) / b);
     }
   return out;
 }

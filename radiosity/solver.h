@@ -16,6 +16,7 @@
 #include "mesh/face_clusters.h"
 #include "mesh/plane_groups.h"
 #include "mesh/refinement.h"
+#include "mesh/sphere_index.h"
 #include "mesh/vertex_split.h"
 #include "radiosity/grow_array.h"
 #include "radiosity/luminaire.h"
@@ -61,6 +62,16 @@ struct RefineSettings {
   // sender) overshoots at every vertex below, always on the same side, and many such
   // transfers add up: in a furnace the worst vertex was 17% off (bench/README.md).
   bool quadratic_pushdown = true;
+  // Dynamic: a new vertex starts from its parent's values (a line across the element
+  // it was split from) plus, for every patch within two of that element's radii that
+  // has shot, what that patch's light bends away from the line: rho times the patch's
+  // shot radiosity times its closed-form F at the vertex minus F interpolated from the
+  // element's corners (no rays). Near a junction F is far from linear (on a wall 2 cm
+  // above a floor, a floor patch a little way off is seen only at grazing angles from
+  // the foot and well from 4 cm up), and a vertex born between a shot from there and the
+  // foot's own patch kept the difference for good: the Cornell demo's dark vertices at
+  // the short block's foot (tests/pictures_test.cpp).
+  bool near_field_start = true;
   // Dynamic, push-down oracle: where elements exist below q, decide by the push-down
   // error alone (OracleInputs::refined).
   bool refined_pushdown = true;
@@ -104,6 +115,18 @@ std::size_t resident_memory();
 // The process's peak resident memory so far (VmHWM; 0 where unknown).
 std::size_t peak_resident_memory();
 
+// How a point's view of a sender was decided by rays: not at all (no rays: the sender
+// lies behind the point, or its light is decided otherwise: luminaires, clusters), by
+// the first few rays all arriving or all blocked, or by the full count (mixed).
+enum class RayVerdict : std::uint8_t { none, seen, hidden, mixed };
+// How many rays a point form factor casts: `full` casts the first pass and the full
+// count whatever the first pass finds (the same first rays, so a forced count only
+// adds to them); `verdict`, when given, receives how the visible part was decided.
+struct RayPlan {
+  bool full = false;
+  RayVerdict* verdict = nullptr;
+};
+
 class Solver {
  public:
   // Refines `scene` through `hierarchy` as it goes; both must outlive the solver.
@@ -128,6 +151,11 @@ class Solver {
     // reflectance per channel, averaged like `radiosity`. Where a channel's reflectance
     // is 0 it is 0: see SolveOptions::min_reflectance.
     std::vector<Rgb> irradiance;
+    // The estimated relative error of `radiosity` at the vertex (luminance), the terms of
+    // estimate_error() taken locally: the unshot light's share of the vertex's value, and
+    // half the largest hierarchical surplus of the leaves that meet there. 0 where the
+    // surface reflects nothing (its value is its emission, exact).
+    std::vector<float> error;
   };
   Output output() { return output(options_.ambient_display); }
   Output output(bool ambient_display);  // with or without the ambient term, whatever the options
@@ -149,6 +177,12 @@ class Solver {
   //     that are whole patches add nothing: no refinement was asked for there.
   // Measured against the path-traced reference in tests/error_estimate_test.cpp.
   ErrorEstimate estimate_error();
+  // The part of the estimate that is the unshot light, per unit reflectance (see
+  // estimate_error()).
+  Rgb unshot_error_radiosity();
+  // An element's hierarchical surplus: at the corner its parent's split made, |value -
+  // the parent's linear interpolation| (luminance); 0 for a patch's root.
+  double surplus(ElementId e) const;
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
@@ -167,6 +201,7 @@ class Solver {
   std::atomic<std::size_t> shot_points_{0};
   std::chrono::steady_clock::time_point shot_start_;
   std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
+
 
   // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1, clusters P + L ..
   // P + L + C - 1.
@@ -244,6 +279,14 @@ class Solver {
   void compute_form_factors(const std::vector<ElementId>& elements);
   // One element's: on return, all three are known (see solver.cpp).
   void compute_corner_form_factors(ElementId e);
+  // After compute_form_factors(elements): a corner whose few first rays all agreed
+  // (RayVerdict::seen or hidden) is cast again with the full count when another corner of
+  // one of its elements found the sender partly hidden or had the opposite verdict.
+  // Two rays that happen to agree inside a penumbra otherwise make a lone dark or
+  // bright vertex (tests/pictures_test.cpp).
+  void settle_visibility(const std::vector<ElementId>& elements);
+  static constexpr double kSettleShare = 0.01;
+  static constexpr double kNearFieldShare = 0.05;
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
   // elements appear (in id order: the same for any thread count), for elements from
@@ -256,7 +299,7 @@ class Solver {
   // F from evaluation point x (of vertex v, on a surface with normal n) to patch
   // `sender`: Lambert's closed form times the fraction of seeded rays that arrive.
   double point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
-                           double* unoccluded) const;
+                           double* unoccluded, const RayPlan& plan = {}) const;
   // Adaptive subdivision: new elements' corner values gathered from every patch that
   // has shot, this shot included (the paper: their values "must be recalculated"). They
   // are stamped so that the walk, if it reaches them in this shot, does not add this
@@ -315,6 +358,13 @@ class Solver {
   static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
+  // Elements from `first` on whose nearest older ancestor is one of this shot's
+  // `terminals` were split after the shot had stopped there (a neighbour's refinement,
+  // kept conforming, reached it): they took this shot's dB as a line between that
+  // ancestor's corners, which misses how F bends (beside a neighbouring wall, by a tenth
+  // of B). Their new corners take it from the sender's closed form instead, times the
+  // visible fraction interpolated from that ancestor's corners.
+  void restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot);
   // Values of elements first to count - 1, each from its nearest ancestor before first.
   void initialise_values(ElementId first, std::size_t count);
   // Push-down: dB given at q's corners and edge midpoints reaches every element below
@@ -408,7 +458,8 @@ class Solver {
   // rays drawn among the patches in proportion to their terms at x (so a point that
   // sees one patch of the group and not the other gets that patch's light, however
   // their areas compare).
-  double group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded) const;
+  double group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded,
+                           const RayPlan& plan) const;
   // Lambert's closed form from x (normal n) to the current group sender, weighted (each
   // patch's term in `terms`, when given, sender_members_.size() of them); a
   // patch at least kMemberFar of its radii away, wholly above x's horizon, counts by the
@@ -476,7 +527,7 @@ class Solver {
   double cluster_lost_fraction(std::uint32_t cluster);
   // The form factor at a point with its own seed key (a vertex's index, or a part's).
   double point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
-                                 double* unoccluded) const;
+                                 double* unoccluded, const RayPlan& plan = {}) const;
   static constexpr std::size_t kChunks = 256;  // per level, at most
 
   SceneMesh& scene_;
@@ -490,6 +541,12 @@ class Solver {
   // Push-down not yet handed to children: a quadratic on the element, its values at the
   // corners (0-2) and at the midpoints of edges (k, k + 1) (3-5).
   GrowArray<std::array<Rgb, 6>> pending_;
+  // The patches as balls (centre, radius), for RefineSettings::near_field_start.
+  SphereIndex patch_index_;
+  // What patches near a new corner at `position` (of new element e, split from
+  // `source`) would add to its start beyond the line across `source`
+  // (RefineSettings::near_field_start).
+  Rgb near_field_start(ElementId e, ElementId source, const Vec3d& position, std::vector<std::uint32_t>& scratch) const;
   GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
   std::size_t initialised_ = 0;            // elements with values
   // This shot: sender and form factors by (vertex, patch).
@@ -501,6 +558,7 @@ class Solver {
   Rgb ambient() const;
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
+    RayVerdict verdict = RayVerdict::none;  // how the visible part was decided
     // The fraction of the sender the corner sees (1 where it could see nothing anyway).
     double visible_fraction() const { return unoccluded > 0 ? visible / unoccluded : 1.0; }
   };

@@ -105,7 +105,8 @@ double Solver::group_closed_form(const Vec3d& x, const Vec3d& n, double* terms) 
   return std::max(0.0, f);
 }
 
-double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded) const {
+double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded,
+                                 const RayPlan& plan) const {
   boost::container::small_vector<double, 32> term(sender_members_.size());
   const double f = group_closed_form(x, n, term.data());
   if (unoccluded) *unoccluded = f;
@@ -144,8 +145,10 @@ double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d&
     cast += n_plus + n_minus;
   };
   pass(options_.min_rays);
-  if (hits != 0 && hits != cast) pass(options_.max_rays);
+  const bool agreed = hits == 0 || hits == cast;
+  if (!agreed || plan.full) pass(options_.max_rays);
   if (cast == 0) return f;  // the group lies (all but) behind x's plane
+  if (plan.verdict) *plan.verdict = !agreed || plan.full ? RayVerdict::mixed : hits == 0 ? RayVerdict::hidden : RayVerdict::seen;
   return std::max(0.0, total * signed_hits / cast);
 }
 

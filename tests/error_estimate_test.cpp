@@ -174,5 +174,79 @@ TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
   EXPECT_LT(mean, 0.005);
 }
 
+// An element split by a neighbour's refinement after a shot had stopped at it once took
+// that shot as a line between the corners of the element it came from, never corrected
+// after: beside a neighbouring wall F bends within a tenth of a metre, and this furnace,
+// shot to convergence with the command line's defaults, kept a wall vertex on its
+// ceiling edge 2.9% above the closed form (below it the lines from push-down and from
+// splits leave about 1%). Such elements now take the shot at their own corners.
+TEST(ErrorEstimate, ElementsSplitAfterAShotStoppedThereTakeItExactly) {
+  test::TempDir dir;
+  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string model = dir.write("furnace.obj",
+                                      "mtllib furnace.mtl\nusemtl glow\n"
+                                      "v 0 0 0\nv 2 0 0\nv 2 1.5 0\nv 0 1.5 0\nv 0 0 1\nv 2 0 1\nv 2 1.5 1\nv 0 1.5 1\n"
+                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  rad::SettingsRequest converged;
+  converged.converge = 1e-5;
+  Solved s = solve_like_the_command_line(model, Quality::normal, converged);
+  const rad::Solver::Output out = s.solver->output();
+  double worst_high = 0, mean = 0;
+  for (const Rgb& b : out.radiosity) {
+    worst_high = std::max(worst_high, (b.g - 2.0) / 2.0);
+    mean += std::abs(b.g - 2.0) / 2.0 / static_cast<double>(out.radiosity.size());
+  }
+  EXPECT_LT(worst_high, 0.015);
+  EXPECT_LT(mean, 0.002);
+}
+
+}  // namespace
+}  // namespace dynrad
+
+namespace dynrad {
+namespace {
+
+// The per-vertex estimate (Solver::Output::error) in a furnace that is not a cube, at
+// the defaults: its mean over the vertices is of the measured mean's size, and the
+// vertices it ranks worst hold the measured worst.
+TEST(ErrorEstimate, PerVertexEstimateFindsTheFurnacesWorstVertices) {
+  test::TempDir dir;
+  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string model = dir.write("furnace.obj",
+                                      "mtllib furnace.mtl\nusemtl glow\n"
+                                      "v 0 0 0\nv 2 0 0\nv 2 1.5 0\nv 0 1.5 0\nv 0 0 1\nv 2 0 1\nv 2 1.5 1\nv 0 1.5 1\n"
+                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  Solved s = solve_like_the_command_line(model, Quality::normal);
+  const rad::Solver::Output out = s.solver->output();
+  const std::size_t n = out.radiosity.size();
+  ASSERT_EQ(out.error.size(), n);
+  std::vector<double> measured(n);
+  double measured_mean = 0, estimated_mean = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    measured[v] = std::abs(out.radiosity[v].g - 2.0) / 2.0;
+    measured_mean += measured[v] / static_cast<double>(n);
+    estimated_mean += out.error[v] / static_cast<double>(n);
+  }
+  // The estimate's rank of each of the ten worst measured vertices (0: ranked worst).
+  std::vector<std::size_t> by_estimate(n), by_measure(n);
+  for (std::size_t v = 0; v < n; ++v) by_estimate[v] = by_measure[v] = v;
+  std::sort(by_estimate.begin(), by_estimate.end(), [&](auto a, auto b) { return out.error[a] > out.error[b]; });
+  std::sort(by_measure.begin(), by_measure.end(), [&](auto a, auto b) { return measured[a] > measured[b]; });
+  std::vector<std::size_t> rank(n);
+  for (std::size_t r = 0; r < n; ++r) rank[by_estimate[r]] = r;
+  std::printf("measured mean %.3f%%, estimated mean %.3f%%; the worst measured (%.2f%%) is ranked %zu of %zu\n",
+              100 * measured_mean, 100 * estimated_mean, 100 * measured[by_measure[0]], rank[by_measure[0]], n);
+  for (int i = 0; i < 10; ++i)
+    std::printf("  measured %.3f%% estimated %.3f%% rank %zu\n", 100 * measured[by_measure[i]], 100 * out.error[by_measure[i]], rank[by_measure[i]]);
+  EXPECT_GE(estimated_mean, measured_mean);
+  EXPECT_LE(estimated_mean, 4 * measured_mean);
+  // Measured (2026-12-03): 6 of the 10 worst rank in the estimate's top 2%; the very
+  // worst (2.8%, on an edge) ranks 430th: the estimate's surplus does not see the edge's
+  // shortfall there (issue 27, item 4: open).
+  int found = 0;
+  for (int i = 0; i < 10; ++i) found += rank[by_measure[i]] < n / 10;
+  EXPECT_GE(found, 5);
+}
+
 }  // namespace
 }  // namespace dynrad

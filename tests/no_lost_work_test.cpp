@@ -82,8 +82,8 @@ TEST(NoLostWork, InterruptedSolveReplacesEveryOutputWithACompleteOne) {
   EXPECT_GT(report["iterations"].get<int>(), 0);
   const std::string mesh = test::read_text(out.mesh);
   ASSERT_EQ(mesh.rfind("ply\n", 0), 0u);
-  // The binary body is exactly what the header declares: vertices of 3 + 3 + 1 floats
-  // and 3 bytes, faces of a count byte and 3 ints.
+  // The binary body is exactly what the header declares: vertices of 3 + 3 + 1 + 1 floats
+  // (position, radiosity, quality, error) and 3 bytes, faces of a count byte and 3 ints.
   const auto count = [&](const std::string& element) {
     const auto at = mesh.find("element " + element + " ");
     return at == std::string::npos ? -1L : std::atol(mesh.c_str() + at + 9 + element.size());
@@ -91,7 +91,7 @@ TEST(NoLostWork, InterruptedSolveReplacesEveryOutputWithACompleteOne) {
   const std::size_t header = mesh.find("end_header\n") + 11;
   ASSERT_GT(count("vertex"), 0);
   ASSERT_GT(count("face"), 0);
-  EXPECT_EQ(mesh.size() - header, std::size_t(count("vertex") * (7 * 4 + 3) + count("face") * (1 + 3 * 4)));
+  EXPECT_EQ(mesh.size() - header, std::size_t(count("vertex") * (8 * 4 + 3) + count("face") * (1 + 3 * 4)));
   EXPECT_EQ(test::read_text(out.preview).substr(1, 3), "PNG");
 }
 

@@ -21,6 +21,8 @@ struct Outliers {
   std::size_t interior = 0;  // vertices inside flat single-material regions
   std::size_t beyond = 0;    // of those, outside their ring's range by more than 2% of their value
   double worst = 0;          // the largest such excess, relative to the value
+  Vec3d where{0, 0, 0};      // the vertex that has it
+  bool darker = false;       // below its ring (else above)
 };
 
 // Over the written vertices: those whose faces all share one normal and one material and
@@ -61,12 +63,20 @@ Outliers ring_outliers(const SceneMesh& scene, const VertexSplit& split, const s
     }
     const double excess = std::max({b - hi, lo - b, 0.0}) / std::max(b, 1e-300);
     if (excess > 0.02) ++out.beyond;
-    out.worst = std::max(out.worst, excess);
+    if (excess > out.worst) {
+      out.worst = excess;
+      out.darker = b < lo;
+      const FaceHandle f = faces[v].front();
+      auto fv = mesh.cfv_begin(f);
+      for (int k = 0; k < 3; ++k, ++fv)
+        if (split.corner[3 * f.idx() + k] == v) out.where = mesh.point(*fv);
+    }
   }
   return out;
 }
 
-TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotches) {
+// The Cornell demo solved with the given seed (the rays' only source of chance).
+Outliers cornell_outliers(std::uint64_t seed) {
   SimplifyOptions simplify;
   simplify.enabled = true;
   LoadedScene scene = load_scene(test::sample("cornell_box.obj"), {}, simplify);
@@ -74,6 +84,7 @@ TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotches) {
   refine.method = rad::Method::dynamic;
   rad::SolveOptions options;
   options.ambient_display = true;
+  options.seed = seed;
   const rad::AppliedSettings applied = rad::apply_settings(*scene.mesh, {}, refine, options);
   make_patches(*scene.mesh, applied.patch_size);
   const RefinementOptions refinement = refinement_for_patch_size(applied.patch_size);
@@ -81,19 +92,34 @@ TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotches) {
   rad::Solver solver(*scene.mesh, hierarchy, options, refine);
   solver.run();
   const rad::Solver::Output out = solver.output();
-  const Outliers o = ring_outliers(*scene.mesh, out.split, out.radiosity);
-  ASSERT_GT(o.interior, 500u);
-  std::printf("%zu of %zu interior vertices beyond their ring by more than 2%%; worst %.1f%%\n", o.beyond, o.interior, 100 * o.worst);
-  // Measured (2026-12-01): 6 of 6,040, the worst 24.3%: one vertex 1 cm above the floor
-  // on the short block's side, darker than its ring. It is an open defect, not new: the
-  // same vertex was 21% dark before the open-scene ambient term with seed 3 (9.1% with
-  // seed 1, the figure this test held before), 23% with flat senders, and it goes away
-  // with 16 first-pass rays per vertex and sender; the rays there decide it. (Leaving
-  // out ray targets behind the receiver's plane removed the seed-3 spike and halved
-  // the outliers above 1%.) What the eye finds blotchy besides is in the blocks'
-  // penumbrae (bench/README.md).
-  EXPECT_LE(o.beyond, o.interior / 200);
-  EXPECT_LT(o.worst, 0.30);
+  return ring_outliers(*scene.mesh, out.split, out.radiosity);
+}
+
+// At every seed, not only the default one: a lone vertex decided by two rays that
+// happened to agree inside a penumbra (both arriving, or both blocked) was up to 67%
+// off its ring at seeds 4 and 5 before corners whose element had disagreeing corners
+// were cast again with the full count (Solver::settle_visibility); the default seed
+// showed 29% and the test held a bound of 30% fitted to it.
+TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotchesAtAnySeed) {
+  double worst = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Outliers o = cornell_outliers(seed);
+    ASSERT_GT(o.interior, 500u);
+    std::printf("seed %d: %zu of %zu interior vertices beyond their ring by more than 2%%; worst %.1f%% (%s, at %.1f %.1f %.1f)\n",
+                static_cast<int>(seed), o.beyond, o.interior, 100 * o.worst, o.darker ? "darker" : "brighter",
+                o.where[0], o.where[1], o.where[2]);
+    EXPECT_LE(o.beyond, o.interior / 500) << "seed " << seed;
+    worst = std::max(worst, o.worst);
+  }
+  // Measured (2026-12-03, gcc and clang, seeds 1-5): at most 11.0%, a vertex on the right
+  // wall 14 cm below the ceiling, brighter than its ring (cause not found yet; issue 27).
+  // Before a new vertex's start took the light of the patches near it into account
+  // (RefineSettings::near_field_start), vertices 1-2 cm above the floor at the short
+  // block's foot were up to 20.5% darker than their rings at every seed: born between a
+  // shot from the floor a little way off, which the foot sees only at grazing angles and
+  // a corner 4 cm up sees well, and the shot from the floor at the foot, they started
+  // from a line through those two corners and never got the difference back.
+  EXPECT_LT(worst, 0.12);
 }
 
 }  // namespace

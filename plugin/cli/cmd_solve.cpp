@@ -303,6 +303,9 @@ int run_solve(SolveCliOptions& options) {
     values.scalars.emplace_back("illuminance", std::move(illuminance));
     values.scalars.emplace_back("luminance", std::move(luminance));
   }
+  // The estimated relative error at each vertex (Solver::Output::error), in the PLY (the
+  // glTF's attributes are for viewers: colour and light).
+  if (std::filesystem::path(options.output).extension() != ".glb") values.scalars.emplace_back("error", result.error);
   // Grids, views, the preview and the glTF's cameras gather from or render the lit mesh
   // (radiosity/lit_scene.h).
   const bool glb = std::filesystem::path(options.output).extension() == ".glb";

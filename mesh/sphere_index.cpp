@@ -1,0 +1,54 @@
+#include "mesh/sphere_index.h"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <boost/iterator/function_output_iterator.hpp>
+
+#include <algorithm>
+#include <iterator>
+
+namespace dynrad {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+using Point = bg::model::point<double, 3, bg::cs::cartesian>;
+using Box = bg::model::box<Point>;
+using Value = std::pair<Box, std::uint32_t>;
+
+struct SphereIndex::Tree {
+  bgi::rtree<Value, bgi::quadratic<16>> tree;
+};
+
+namespace {
+Box box_around(const Vec3d& c, double r) {
+  return Box(Point(c[0] - r, c[1] - r, c[2] - r), Point(c[0] + r, c[1] + r, c[2] + r));
+}
+}  // namespace
+
+SphereIndex::SphereIndex() : tree_(std::make_unique<Tree>()) {}
+
+SphereIndex::SphereIndex(const std::vector<Ball>& balls) : balls_(balls) {
+  std::vector<Value> values;
+  values.reserve(balls.size());
+  for (std::uint32_t i = 0; i < balls.size(); ++i) values.emplace_back(box_around(balls[i].centre, balls[i].radius), i);
+  // The range constructor packs the tree (sort-tile-recursive): faster queries than
+  // inserting one by one.
+  tree_ = std::make_unique<Tree>(Tree{bgi::rtree<Value, bgi::quadratic<16>>(values.begin(), values.end())});
+}
+
+SphereIndex::~SphereIndex() = default;
+SphereIndex::SphereIndex(SphereIndex&&) noexcept = default;
+SphereIndex& SphereIndex::operator=(SphereIndex&&) noexcept = default;
+
+void SphereIndex::near(const Vec3d& x, double distance, std::vector<std::uint32_t>& out) const {
+  const std::size_t start = out.size();
+  tree_->tree.query(bgi::intersects(box_around(x, distance)),
+                    boost::make_function_output_iterator([&](const Value& v) {
+                      const Ball& b = balls_[v.second];
+                      if ((b.centre - x).norm() < b.radius + distance) out.push_back(v.second);
+                    }));
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
+}
+
+}  // namespace dynrad

@@ -1,0 +1,35 @@
+// Which of a fixed set of balls come within a distance of a point: a bounding-volume
+// tree (Boost.Geometry's R-tree, packed once) over the balls' boxes.
+#pragma once
+
+#include "mesh/types.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace dynrad {
+
+class SphereIndex {
+ public:
+  struct Ball {
+    Vec3d centre;
+    double radius = 0;
+  };
+  SphereIndex();
+  explicit SphereIndex(const std::vector<Ball>& balls);
+  ~SphereIndex();
+  SphereIndex(SphereIndex&&) noexcept;
+  SphereIndex& operator=(SphereIndex&&) noexcept;
+
+  // Appends to `out` the index of every ball whose surface comes within `distance` of
+  // `x` (its centre is closer than radius + distance), in increasing order.
+  void near(const Vec3d& x, double distance, std::vector<std::uint32_t>& out) const;
+
+ private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+  std::vector<Ball> balls_;
+};
+
+}  // namespace dynrad
