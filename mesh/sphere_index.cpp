@@ -41,6 +41,14 @@ SphereIndex::~SphereIndex() = default;
 SphereIndex::SphereIndex(SphereIndex&&) noexcept = default;
 SphereIndex& SphereIndex::operator=(SphereIndex&&) noexcept = default;
 
+void SphereIndex::insert(std::uint32_t id, const Ball& ball) {
+  if (balls_.size() <= id) balls_.resize(static_cast<std::size_t>(id) + 1);
+  balls_[id] = ball;
+  tree_->tree.insert(Value(box_around(ball.centre, ball.radius), id));
+}
+
+std::size_t SphereIndex::size() const { return tree_->tree.size(); }
+
 void SphereIndex::near(const Vec3d& x, double distance, std::vector<std::uint32_t>& out) const {
   const std::size_t start = out.size();
   tree_->tree.query(bgi::intersects(box_around(x, distance)),

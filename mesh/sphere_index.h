@@ -1,5 +1,6 @@
-// Which of a fixed set of balls come within a distance of a point: a bounding-volume
-// tree (Boost.Geometry's R-tree, packed once) over the balls' boxes.
+// Which of a set of balls come within a distance of a point: a bounding-volume tree
+// (Boost.Geometry's R-tree) over the balls' boxes, packed once from the balls given and
+// grown by insert().
 #pragma once
 
 #include "mesh/types.h"
@@ -22,6 +23,10 @@ class SphereIndex {
   SphereIndex(SphereIndex&&) noexcept;
   SphereIndex& operator=(SphereIndex&&) noexcept;
 
+  // Adds a ball, numbered `id` (ids need not be dense: `near` returns them).
+  void insert(std::uint32_t id, const Ball& ball);
+  std::size_t size() const;
+
   // Appends to `out` the index of every ball whose surface comes within `distance` of
   // `x` (its centre is closer than radius + distance), in increasing order.
   void near(const Vec3d& x, double distance, std::vector<std::uint32_t>& out) const;
@@ -29,7 +34,7 @@ class SphereIndex {
  private:
   struct Tree;
   std::unique_ptr<Tree> tree_;
-  std::vector<Ball> balls_;
+  std::vector<Ball> balls_;  // by id
 };
 
 }  // namespace dynrad

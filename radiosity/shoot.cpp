@@ -332,10 +332,13 @@ bool Solver::shoot_once() {
   account_transfers(terminals, reach, i, shot);
   if (!sender_members_.empty()) {
     const PlaneGroups::Group& g = group_of(i);
-    for (std::uint32_t n = 0; n < g.count; ++n)
+    for (std::uint32_t n = 0; n < g.count; ++n) {
+      index_shot_patch(groups_.members[g.first + n]);
       patches_[groups_.members[g.first + n]].shot += sender_member_unshot_[n] * options_.overshoot;
+    }
     sender_members_.clear();
   } else if (!is_luminaire(i) && !is_cluster(i)) {
+    index_shot_patch(i);
     patches_[i].shot += shot;
   }
   ++report_.iterations;

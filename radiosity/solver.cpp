@@ -115,11 +115,6 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
       patches_[p].detail = facet[p] < kDetailFacet * patch_area_;
   }
   build_tree();
-  {
-    std::vector<SphereIndex::Ball> balls(patches_.size());
-    for (std::size_t p = 0; p < patches_.size(); ++p) balls[p] = {patches_[p].centre, patches_[p].radius};
-    patch_index_ = SphereIndex(balls);
-  }
   survey_patches();
   // Every existing element starts at its patch's emission.
   value_.resize(hierarchy_.element_count());
@@ -496,7 +491,7 @@ void Solver::settle_visibility(const std::vector<ElementId>& elements) {
       if (!mixed && !(seen && hidden)) continue;
       // Only where a wrong verdict would show: the sender's light there, unoccluded, is at
       // least kSettleShare of what the corner holds (on the IFC house, casting again
-      // wherever corners disagreed cost a fifth of the solve).
+      // wherever corners disagreed cost a fifth of the solve; with the share, a tenth).
       const ElementId e = elements[n];
       const double light = (patches_[hierarchy_.element(e).patch].reflectance * current_shot_).luminance();
       for (int k = 0; k < 3; ++k) {
@@ -1032,7 +1027,7 @@ Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& positio
   const Vec3d point = position + (hierarchy_.centroid(e) - position) * 1e-2;
   const std::array<double, 3> l = barycentric(source, position);
   scratch.clear();
-  patch_index_.near(point, radius, scratch);
+  patch_index_.near(point, radius, scratch);  // (only patches that have shot are in it)
   // Only patches whose light could bend the start by kNearFieldShare of the value the
   // line gives (F's bend is at most 1), and only within one radius of the source: on
   // the IFC house, every patch within two radii of every new vertex cost a fifth of the

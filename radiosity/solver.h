@@ -285,7 +285,7 @@ class Solver {
   // Two rays that happen to agree inside a penumbra otherwise make a lone dark or
   // bright vertex (tests/pictures_test.cpp).
   void settle_visibility(const std::vector<ElementId>& elements);
-  static constexpr double kSettleShare = 0.01;
+  static constexpr double kSettleShare = 0.05;
   static constexpr double kNearFieldShare = 0.05;
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
@@ -541,8 +541,17 @@ class Solver {
   // Push-down not yet handed to children: a quadratic on the element, its values at the
   // corners (0-2) and at the midpoints of edges (k, k + 1) (3-5).
   GrowArray<std::array<Rgb, 6>> pending_;
-  // The patches as balls (centre, radius), for RefineSettings::near_field_start.
+  // The patches that have shot, as balls (centre, radius), for
+  // RefineSettings::near_field_start: on the IFC house, an index of all 62,000 patches
+  // gave 125 candidates per new vertex, of which 1 in 120 had shot enough to count.
   SphereIndex patch_index_;
+  std::vector<char> indexed_;  // per patch: in patch_index_
+  void index_shot_patch(std::uint32_t p) {
+    if (indexed_.empty()) indexed_.assign(patches_.size(), 0);
+    if (indexed_[p]) return;
+    indexed_[p] = 1;
+    patch_index_.insert(p, {patches_[p].centre, patches_[p].radius});
+  }
   // What patches near a new corner at `position` (of new element e, split from
   // `source`) would add to its start beyond the line across `source`
   // (RefineSettings::near_field_start).

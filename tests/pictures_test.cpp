@@ -23,6 +23,7 @@ struct Outliers {
   double worst = 0;          // the largest such excess, relative to the value
   Vec3d where{0, 0, 0};      // the vertex that has it
   bool darker = false;       // below its ring (else above)
+  double spread = 0;         // its ring's range (max - min), relative to its value
 };
 
 // Over the written vertices: those whose faces all share one normal and one material and
@@ -66,6 +67,7 @@ Outliers ring_outliers(const SceneMesh& scene, const VertexSplit& split, const s
     if (excess > out.worst) {
       out.worst = excess;
       out.darker = b < lo;
+      out.spread = (hi - lo) / std::max(b, 1e-300);
       const FaceHandle f = faces[v].front();
       auto fv = mesh.cfv_begin(f);
       for (int k = 0; k < 3; ++k, ++fv)
@@ -105,14 +107,17 @@ TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotchesAtAnySeed) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const Outliers o = cornell_outliers(seed);
     ASSERT_GT(o.interior, 500u);
-    std::printf("seed %d: %zu of %zu interior vertices beyond their ring by more than 2%%; worst %.1f%% (%s, at %.1f %.1f %.1f)\n",
+    std::printf("seed %d: %zu of %zu interior vertices beyond their ring by more than 2%%; worst %.1f%% (%s, at %.1f %.1f %.1f; its ring spans %.1f%%)\n",
                 static_cast<int>(seed), o.beyond, o.interior, 100 * o.worst, o.darker ? "darker" : "brighter",
-                o.where[0], o.where[1], o.where[2]);
+                o.where[0], o.where[1], o.where[2], 100 * o.spread);
     EXPECT_LE(o.beyond, o.interior / 500) << "seed " << seed;
     worst = std::max(worst, o.worst);
   }
-  // Measured (2026-12-03, gcc and clang, seeds 1-5): at most 11.0%, a vertex on the right
-  // wall 14 cm below the ceiling, brighter than its ring (cause not found yet; issue 27).
+  // Measured (2026-12-03, seeds 1-5): at most 7.8% (gcc) and 9.0% (clang), vertices on the
+  // right wall 14 cm below the ceiling, brighter than their rings by about half of what
+  // the rings span (16%): a ridge of the lamp's light that the rings under-resolve, or a
+  // defect; not traced yet (issue 27). The bound leaves a little room for the compilers'
+  // different meshes; it is not yet the gradient-scaled criterion issue 27 asks for.
   // Before a new vertex's start took the light of the patches near it into account
   // (RefineSettings::near_field_start), vertices 1-2 cm above the floor at the short
   // block's foot were up to 20.5% darker than their rings at every seed: born between a
