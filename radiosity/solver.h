@@ -279,7 +279,8 @@ class Solver {
   void compute_form_factors(const std::vector<ElementId>& elements);
   // One element's: on return, all three are known (see solver.cpp).
   void compute_corner_form_factors(ElementId e);
-  // After compute_form_factors(elements): a corner whose few first rays all agreed
+  // After compute_form_factors(elements), for a shot from an emitting patch: a corner
+  // whose few first rays all agreed
   // (RayVerdict::seen or hidden) is cast again with the full count when another corner of
   // one of its elements found the sender partly hidden or had the opposite verdict.
   // Two rays that happen to agree inside a penumbra otherwise make a lone dark or
