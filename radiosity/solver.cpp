@@ -598,6 +598,15 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   }
   if (is_cluster(sender_id)) return cluster_form_factor(x, normal, key, true, unoccluded);
   const Patch& sender = patches_[sender_id];
+  // A patch sends nothing to a point that faces the way it does (in its own plane or a
+  // parallel one). The closed form is undefined at a point in the sender's plane: a
+  // receiver that a coplanar neighbour shares with the sender, evaluated inside the
+  // sender, took F = 1.71 from it (the Cornell demo's right wall: a vertex 8-20% above
+  // its ring, tests/pictures_test.cpp).
+  if (OpenMesh::dot(normal, sender.normal) > 1 - 1e-9) {
+    if (unoccluded) *unoccluded = 0;
+    return 0.0;
+  }
   if (sender_id == sender_ && !sender_members_.empty()) return group_form_factor(key, x, normal, unoccluded, plan);
   double f = sender_id == sender_ ? sender_closed_form(x, normal)
                                   : point_to_triangle(x, normal, sender.corners[0], sender.corners[1],
@@ -696,8 +705,9 @@ double Solver::element_form_factor(ElementId q) const {
 double Solver::sender_closed_form(const Vec3d& x, const Vec3d& n) const {
   if (is_luminaire(sender_)) return luminaire_illuminance(x, n, sender_, 0, false, nullptr);
   if (is_cluster(sender_)) return cluster_form_factor(x, n, 0, false, nullptr);
-  if (!sender_members_.empty()) return group_closed_form(x, n);
   const Patch& sender = patches_[sender_];
+  if (OpenMesh::dot(n, sender.normal) > 1 - 1e-9) return 0.0;  // facing the same way (see point_form_factor_keyed)
+  if (!sender_members_.empty()) return group_closed_form(x, n);
   return shaped_closed_form(x, n, sender.corners, sender.centre, sender.radius, sender.area, sender.normal, shape_);
 }
 
