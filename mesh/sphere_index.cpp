@@ -28,15 +28,6 @@ Box box_around(const Vec3d& c, double r) {
 
 SphereIndex::SphereIndex() : tree_(std::make_unique<Tree>()) {}
 
-SphereIndex::SphereIndex(const std::vector<Ball>& balls) : balls_(balls) {
-  std::vector<Value> values;
-  values.reserve(balls.size());
-  for (std::uint32_t i = 0; i < balls.size(); ++i) values.emplace_back(box_around(balls[i].centre, balls[i].radius), i);
-  // The range constructor packs the tree (sort-tile-recursive): faster queries than
-  // inserting one by one.
-  tree_ = std::make_unique<Tree>(Tree{bgi::rtree<Value, bgi::quadratic<16>>(values.begin(), values.end())});
-}
-
 SphereIndex::~SphereIndex() = default;
 SphereIndex::SphereIndex(SphereIndex&&) noexcept = default;
 SphereIndex& SphereIndex::operator=(SphereIndex&&) noexcept = default;

@@ -1,6 +1,5 @@
-// Which of a set of balls come within a distance of a point: a bounding-volume tree
-// (Boost.Geometry's R-tree) over the balls' boxes, packed once from the balls given and
-// grown by insert().
+// Which of a growing set of balls come within a distance of a point: a bounding-volume
+// tree (Boost.Geometry's R-tree) over the balls' boxes.
 #pragma once
 
 #include "mesh/types.h"
@@ -18,7 +17,6 @@ class SphereIndex {
     double radius = 0;
   };
   SphereIndex();
-  explicit SphereIndex(const std::vector<Ball>& balls);
   ~SphereIndex();
   SphereIndex(SphereIndex&&) noexcept;
   SphereIndex& operator=(SphereIndex&&) noexcept;

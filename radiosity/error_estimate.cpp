@@ -51,7 +51,7 @@ ErrorEstimate Solver::estimate_error() {
   return out;
 }
 
-Rgb Solver::unshot_error_radiosity() {
+Rgb Solver::unshot_error_radiosity() const {
   const Rgb ambient_now = ambient();
   const double unshot_weight = options_.ambient_display ? 0.25 : 1.0;
   // With over-relaxation the unshot light has both signs: the ambient term (its sum)

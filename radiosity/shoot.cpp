@@ -182,8 +182,10 @@ bool Solver::shoot_once() {
     // A chunk has at least 4 elements: joining a chunk costs about as much as deciding
     // for a few elements, more when another core wrote it (on the 1990 room's 2.5 m
     // patches, chunks of one element spent 8% of a 2-thread solve in the join).
-    compute_form_factors(level);
-    settle_visibility(level);
+    if (settles_visibility()) {  // its corners first, all of the level's (see settle_visibility)
+      compute_form_factors(level);
+      settle_visibility(level);
+    }
     const std::size_t chunk = std::max<std::size_t>(4, (level.size() + kChunks - 1) / kChunks);
     const std::size_t chunks = (level.size() + chunk - 1) / chunk;
     if (walk_chunks_.size() < chunks) walk_chunks_.resize(chunks);

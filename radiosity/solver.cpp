@@ -115,6 +115,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
       patches_[p].detail = facet[p] < kDetailFacet * patch_area_;
   }
   build_tree();
+  indexed_.assign(patches_.size(), 0);
   survey_patches();
   // Every existing element starts at its patch's emission.
   value_.resize(hierarchy_.element_count());
@@ -473,11 +474,6 @@ void Solver::compute_corner_form_factors(ElementId e) {
 }
 
 void Solver::settle_visibility(const std::vector<ElementId>& elements) {
-  // Emitting patches only (an area light, a window's glow): their penumbrae are the
-  // sharpest a patch casts and their light the most of a corner's value. For the
-  // reflected light of the other patches it cost the IFC house 5% of its solve and
-  // changed nothing the Cornell demo's test sees (bench/README.md).
-  if (!(sender_ < patches_.size()) || patches_[sender_].emission.is_zero()) return;
   // Marked receivers are listed per chunk of elements and joined in order, so that the
   // list (sorted, without repeats) is the same for any number of threads.
   const std::size_t chunk = std::max<std::size_t>(64, (elements.size() + kChunks - 1) / kChunks);
@@ -1017,13 +1013,13 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
         value_[e][k] = interpolate(source, p, position);
         const bool new_vertex = v != src.corners[0] && v != src.corners[1] && v != src.corners[2];
         if (new_vertex && refine_.near_field_start && refine_.method == Method::dynamic)
-          value_[e][k] += near_field_start(e, source, position, scratch);
+          value_[e][k] += near_field_start(e, source, position, value_[e][k].luminance(), scratch);
       }
     }
   });
 }
 
-Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& position,
+Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& position, double line,
                              std::vector<std::uint32_t>& scratch) const {
   const Element& src = hierarchy_.element(source);
   const Patch& patch = patches_[src.patch];
@@ -1047,11 +1043,10 @@ Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& positio
   // line gives (F's bend is at most 1), and only within one radius of the source: on
   // the IFC house, every patch within two radii of every new vertex cost a fifth of the
   // solve.
-  const double line = interpolate(source, value_[source], position).luminance();
   Rgb add;
   for (std::uint32_t j : scratch) {
     const Patch& s = patches_[j];
-    if (j == src.patch || s.shot.is_zero() || s.plane == patch.plane) continue;
+    if (j == src.patch || s.plane == patch.plane) continue;
     if ((patch.reflectance * s.shot).luminance() < kNearFieldShare * line) continue;
     auto f = [&](const Vec3d& x) { return point_to_triangle(x, n, s.corners[0], s.corners[1], s.corners[2], s.normal); };
     const double bend = f(point) - (l[0] * f(corner_point[0]) + l[1] * f(corner_point[1]) + l[2] * f(corner_point[2]));

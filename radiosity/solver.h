@@ -63,7 +63,7 @@ struct RefineSettings {
   // transfers add up: in a furnace the worst vertex was 17% off (bench/README.md).
   bool quadratic_pushdown = true;
   // Dynamic: a new vertex starts from its parent's values (a line across the element
-  // it was split from) plus, for every patch within two of that element's radii that
+  // it was split from) plus, for every patch within one radius of that element that
   // has shot, what that patch's light bends away from the line: rho times the patch's
   // shot radiosity times its closed-form F at the vertex minus F interpolated from the
   // element's corners (no rays). Near a junction F is far from linear (on a wall 2 cm
@@ -179,7 +179,7 @@ class Solver {
   ErrorEstimate estimate_error();
   // The part of the estimate that is the unshot light, per unit reflectance (see
   // estimate_error()).
-  Rgb unshot_error_radiosity();
+  Rgb unshot_error_radiosity() const;
   // An element's hierarchical surplus: at the corner its parent's split made, |value -
   // the parent's linear interpolation| (luminance); 0 for a patch's root.
   double surplus(ElementId e) const;
@@ -201,7 +201,6 @@ class Solver {
   std::atomic<std::size_t> shot_points_{0};
   std::chrono::steady_clock::time_point shot_start_;
   std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
-
 
   // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1, clusters P + L ..
   // P + L + C - 1.
@@ -279,14 +278,19 @@ class Solver {
   void compute_form_factors(const std::vector<ElementId>& elements);
   // One element's: on return, all three are known (see solver.cpp).
   void compute_corner_form_factors(ElementId e);
-  // After compute_form_factors(elements), for a shot from an emitting patch: a corner
-  // whose few first rays all agreed
-  // (RayVerdict::seen or hidden) is cast again with the full count when another corner of
-  // one of its elements found the sender partly hidden or had the opposite verdict.
-  // Two rays that happen to agree inside a penumbra otherwise make a lone dark or
-  // bright vertex (tests/pictures_test.cpp).
+  // After compute_form_factors(elements), when settles_visibility(): a corner whose few
+  // first rays all agreed (RayVerdict::seen or hidden) is cast again with the full count
+  // when another corner of one of its elements found the sender partly hidden or had
+  // the opposite verdict, and the sender's unoccluded light there is at least
+  // kSettleShare of what the corner holds. Two rays that happen to agree inside a
+  // penumbra otherwise make a lone dark or bright vertex (tests/pictures_test.cpp).
   void settle_visibility(const std::vector<ElementId>& elements);
   static constexpr double kSettleShare = 0.05;
+  // For shots from emitting patches (an area light, a window's glow): their penumbrae
+  // are the sharpest a patch casts and their light the most of a corner's value. For the
+  // reflected light of the other patches it cost the IFC house 5% of its solve and
+  // changed nothing the Cornell demo's test sees (bench/README.md).
+  bool settles_visibility() const { return sender_ < patches_.size() && !patches_[sender_].emission.is_zero(); }
   static constexpr double kNearFieldShare = 0.05;
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
@@ -548,7 +552,6 @@ class Solver {
   SphereIndex patch_index_;
   std::vector<char> indexed_;  // per patch: in patch_index_
   void index_shot_patch(std::uint32_t p) {
-    if (indexed_.empty()) indexed_.assign(patches_.size(), 0);
     if (indexed_[p]) return;
     indexed_[p] = 1;
     patch_index_.insert(p, {patches_[p].centre, patches_[p].radius});
@@ -556,7 +559,9 @@ class Solver {
   // What patches near a new corner at `position` (of new element e, split from
   // `source`) would add to its start beyond the line across `source`
   // (RefineSettings::near_field_start).
-  Rgb near_field_start(ElementId e, ElementId source, const Vec3d& position, std::vector<std::uint32_t>& scratch) const;
+  // `line`: the luminance the line across `source` gives there.
+  Rgb near_field_start(ElementId e, ElementId source, const Vec3d& position, double line,
+                       std::vector<std::uint32_t>& scratch) const;
   GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
   std::size_t initialised_ = 0;            // elements with values
   // This shot: sender and form factors by (vertex, patch).

@@ -157,14 +157,21 @@ TEST(ErrorEstimate, BoundsTheErrorOfAnEarlyStop) {
   }
 }
 
+// A closed box [0, 2] x [0, depth] x [0, 1] whose every face emits 1 and reflects 0.5:
+// B = 2 everywhere. Returns the OBJ's path.
+std::string write_furnace(test::TempDir& dir, double depth) {
+  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string d = std::to_string(depth);
+  return dir.write("furnace.obj", "mtllib furnace.mtl\nusemtl glow\n"
+                                  "v 0 0 0\nv 2 0 0\nv 2 " + d + " 0\nv 0 " + d + " 0\nv 0 0 1\nv 2 0 1\nv 2 " + d +
+                                      " 1\nv 0 " + d + " 1\n"
+                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+}
+
 // The furnace: B = E / (1 - rho) everywhere, whatever the mesh.
 TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
   test::TempDir dir;
-  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
-  const std::string model = dir.write("furnace.obj",
-                                      "mtllib furnace.mtl\nusemtl glow\n"
-                                      "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\n"
-                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  const std::string model = write_furnace(dir, 1);
   Solved s = solve_like_the_command_line(model, Quality::normal);
   const rad::Solver::Output out = s.solver->output();
   double mean = 0;
@@ -182,11 +189,7 @@ TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
 // splits leave about 1%). Such elements now take the shot at their own corners.
 TEST(ErrorEstimate, ElementsSplitAfterAShotStoppedThereTakeItExactly) {
   test::TempDir dir;
-  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
-  const std::string model = dir.write("furnace.obj",
-                                      "mtllib furnace.mtl\nusemtl glow\n"
-                                      "v 0 0 0\nv 2 0 0\nv 2 1.5 0\nv 0 1.5 0\nv 0 0 1\nv 2 0 1\nv 2 1.5 1\nv 0 1.5 1\n"
-                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  const std::string model = write_furnace(dir, 1.5);
   rad::SettingsRequest converged;
   converged.converge = 1e-5;
   Solved s = solve_like_the_command_line(model, Quality::normal, converged);
@@ -200,22 +203,13 @@ TEST(ErrorEstimate, ElementsSplitAfterAShotStoppedThereTakeItExactly) {
   EXPECT_LT(mean, 0.002);
 }
 
-}  // namespace
-}  // namespace dynrad
-
-namespace dynrad {
-namespace {
 
 // The per-vertex estimate (Solver::Output::error) in a furnace that is not a cube, at
 // the defaults: its mean over the vertices is of the measured mean's size, and the
 // vertices it ranks worst hold the measured worst.
 TEST(ErrorEstimate, PerVertexEstimateFindsTheFurnacesWorstVertices) {
   test::TempDir dir;
-  dir.write("furnace.mtl", "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
-  const std::string model = dir.write("furnace.obj",
-                                      "mtllib furnace.mtl\nusemtl glow\n"
-                                      "v 0 0 0\nv 2 0 0\nv 2 1.5 0\nv 0 1.5 0\nv 0 0 1\nv 2 0 1\nv 2 1.5 1\nv 0 1.5 1\n"
-                                      "f 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 5 8 7 6\n");
+  const std::string model = write_furnace(dir, 1.5);
   Solved s = solve_like_the_command_line(model, Quality::normal);
   const rad::Solver::Output out = s.solver->output();
   const std::size_t n = out.radiosity.size();

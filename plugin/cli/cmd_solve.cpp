@@ -303,12 +303,12 @@ int run_solve(SolveCliOptions& options) {
     values.scalars.emplace_back("illuminance", std::move(illuminance));
     values.scalars.emplace_back("luminance", std::move(luminance));
   }
+  const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   // The estimated relative error at each vertex (Solver::Output::error), in the PLY (the
   // glTF's attributes are for viewers: colour and light).
-  if (std::filesystem::path(options.output).extension() != ".glb") values.scalars.emplace_back("error", result.error);
+  if (!glb) values.scalars.emplace_back("error", result.error);
   // Grids, views, the preview and the glTF's cameras gather from or render the lit mesh
   // (radiosity/lit_scene.h).
-  const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   std::unique_ptr<rad::LitScene> scene_lit;
   if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb)
     scene_lit = std::make_unique<rad::LitScene>(
