@@ -165,6 +165,7 @@ bool Solver::shoot_once() {
     ++report_.energy_transfers;
     if (el.generation > 0) ++report_.patch_element_transfers;
   };
+  held_.clear();
   receiving_patches(i, level);  // every patch j but those that cannot (or hardly) receive (from a luminaire: all but those)
 
   while (!level.empty()) {

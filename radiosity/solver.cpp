@@ -980,6 +980,10 @@ void Solver::initialise_new_elements() {
     initialised_ = count;
     return;
   }
+  // Storage for the new receivers first, so that registering moves nothing the values
+  // read meanwhile (near_field_start reads the source corners' receivers).
+  corner_receiver_.resize(count);
+  receivers_.reserve(receivers_.size() + 3 * (count - first));
   tbb::task_group registering;
   registering.run([this, first] { register_receivers(first); });
   try {
@@ -1028,11 +1032,12 @@ Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& positio
   double radius = 0;
   Vec3d corner_point[3];
   for (int k = 0; k < 3; ++k) {
-    const Vec3d c = hierarchy_.position(src.corners[k]);
-    radius = std::max(radius, (c - centroid).norm());
-    // (not the corners' receivers: register_receivers() may be adding to them meanwhile;
-    // a step into the source as theirs are into some element at the vertex)
-    corner_point[k] = c + (centroid - c) * 1e-2;
+    radius = std::max(radius, (hierarchy_.position(src.corners[k]) - centroid).norm());
+    // Where the corner's light was computed (the step into the element that registered
+    // it), not a step into the source: at a patch's corner on an edge, F from that patch
+    // jumps across the corner, and the bend taken from a point on the wrong side of it
+    // was off by the whole jump (a furnace's edge vertex 4% too bright at high quality).
+    corner_point[k] = receivers_[corner_receiver_[source][k]].point;
   }
   // The new corner's evaluation point, as register_receivers() places it.
   const Vec3d point = position + (hierarchy_.centroid(e) - position) * 1e-2;
@@ -1057,43 +1062,57 @@ Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& positio
 
 void Solver::restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot) {
   const std::size_t count = hierarchy_.element_count();
-  if (count == first || terminals.empty()) return;
+  if (count == first || (terminals.empty() && held_.empty())) return;
   std::sort(terminals.begin(), terminals.end());
+  auto holds = [&](ElementId s) {
+    return std::binary_search(terminals.begin(), terminals.end(), s) || held_.count(s) > 0;
+  };
   std::vector<ElementId> affected;
   std::vector<ElementId> source_of;
   for (ElementId e = static_cast<ElementId>(first); e < count; ++e) {
     ElementId source = hierarchy_.element(e).parent;
     while (source >= first) source = hierarchy_.element(source).parent;
-    if (!std::binary_search(terminals.begin(), terminals.end(), source)) continue;
+    if (!holds(source)) continue;
     affected.push_back(e);
     source_of.push_back(source);
   }
+  std::vector<HeldShot> now(affected.size());
   parallel_for_index(affected.size(), 64, [&](std::size_t n) {
     const ElementId e = affected[n], source = source_of[n];
     const Element& el = hierarchy_.element(e);
     const Element& src = hierarchy_.element(source);
     const Patch& patch = patches_[el.patch];
-    std::array<Rgb, 3> at_source;  // this shot's dB at the source's corners, as it was inherited
-    std::array<double, 3> seen;    // and the fractions of the sender they see
-    for (int k = 0; k < 3; ++k) {
-      at_source[k] = patch.reflectance * shot * form_factor(source, k);
-      seen[k] = corner_form_factor(source, k).visible_fraction();
+    // This shot's dB at the source's corners, as it was inherited, and the fractions of
+    // the sender they see: a terminal's from its corners' form factors; an element split
+    // from a terminal earlier in this shot (and split again since) as it was restarted.
+    HeldShot at_source;
+    if (const auto it = held_.find(source); it != held_.end()) {
+      at_source = it->second;
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        at_source.dB[k] = patch.reflectance * shot * form_factor(source, k);
+        at_source.seen[k] = corner_form_factor(source, k).visible_fraction();
+      }
     }
+    HeldShot& held = now[n];
     for (int k = 0; k < 3; ++k) {
       const VertexHandle v = el.corners[k];
+      const Vec3d position = hierarchy_.position(v);
+      const std::array<double, 3> l = barycentric(source, position);
+      const Rgb line = interpolate(source, at_source.dB, position);
+      held.seen[k] = l[0] * at_source.seen[0] + l[1] * at_source.seen[1] + l[2] * at_source.seen[2];
+      held.dB[k] = line;
       if (v == src.corners[0] || v == src.corners[1] || v == src.corners[2]) continue;  // exact already
       // The sender's closed form at the new corner's evaluation point (the kernel, which
       // bends beside a neighbouring surface), times the visible fraction interpolated
       // from the source's corners (as at the push-down's midpoints: no rays, so no
       // vertex is left to two rays' say).
-      const Vec3d position = hierarchy_.position(v);
       const Vec3d point = receivers_[corner_receiver_[e][k]].point;
-      const std::array<double, 3> l = barycentric(source, position);
-      const double visible = l[0] * seen[0] + l[1] * seen[1] + l[2] * seen[2];
-      const Rgb exact = patch.reflectance * shot * (visible * sender_closed_form(point, hierarchy_.normal(e)));
-      value_[e][k] = value_[e][k] - interpolate(source, at_source, position) + exact;
+      held.dB[k] = patch.reflectance * shot * (held.seen[k] * sender_closed_form(point, hierarchy_.normal(e)));
+      value_[e][k] = value_[e][k] - line + held.dB[k];
     }
   });
+  for (std::size_t n = 0; n < affected.size(); ++n) held_[affected[n]] = now[n];
 }
 
 void Solver::push_down(ElementId q, const std::array<Rgb, 6>& delta) {

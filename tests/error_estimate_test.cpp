@@ -204,6 +204,31 @@ TEST(ErrorEstimate, ElementsSplitAfterAShotStoppedThereTakeItExactly) {
 }
 
 
+// Two ways a vertex beside an edge kept the wrong share of a shot for good, both in
+// this furnace: (1) an element split from a terminal after the walk had passed (a
+// neighbour's refinement reached it) and split again later in the same shot took the
+// shot as a line between corners 0.75 m apart; (2) a new vertex's start was bent by
+// nearby patches' F measured a step into its parent, where the parent's corner at a
+// patch's corner on the edge had taken F a step into another element, across F's jump
+// there. Measured: converged 1.26% at worst before, 0.58% after; high quality 1.03%
+// before, 0.57% after (the 4 x 3 x 1.5 room of bench/defaults.cpp: 2.25% and 4.23%
+// before, 0.49% and 0.54% after).
+TEST(ErrorEstimate, EdgeVerticesOfAFurnaceKeepTheirShareOnceConvergedOrAtHighQuality) {
+  test::TempDir dir;
+  const std::string model = write_furnace(dir, 1.5);
+  rad::SettingsRequest converged;
+  converged.converge = 1e-5;
+  for (const auto& [quality, request] :
+       {std::pair{Quality::normal, converged}, std::pair{Quality::high, rad::SettingsRequest{}}}) {
+    Solved s = solve_like_the_command_line(model, quality, request);
+    const rad::Solver::Output out = s.solver->output();
+    double worst = 0;
+    for (const Rgb& b : out.radiosity) worst = std::max(worst, std::abs(b.g - 2.0) / 2.0);
+    EXPECT_LT(worst, 0.008) << (quality == Quality::high ? "high" : "converged");
+  }
+}
+
+
 // The per-vertex estimate (Solver::Output::error) in a furnace that is not a cube, at
 // the defaults: its mean over the vertices is of the measured mean's size, and the
 // vertices it ranks worst hold the measured worst.
@@ -234,12 +259,15 @@ TEST(ErrorEstimate, PerVertexEstimateFindsTheFurnacesWorstVertices) {
     std::printf("  measured %.3f%% estimated %.3f%% rank %zu\n", 100 * measured[by_measure[i]], 100 * out.error[by_measure[i]], rank[by_measure[i]]);
   EXPECT_GE(estimated_mean, measured_mean);
   EXPECT_LE(estimated_mean, 4 * measured_mean);
-  // Measured (2026-12-03): 6 of the 10 worst rank in the estimate's top 2%; the very
-  // worst (2.8%, on an edge) ranks 430th: the estimate's surplus does not see the edge's
-  // shortfall there (issue 27, item 4: open).
+  // Measured: 7 of the 10 worst rank in the estimate's top 10%, and the very worst
+  // (2.8%, on an edge) first. Before the edge fixes of the test above it ranked 430th:
+  // the vertex held a wrong share for good, which no surplus or unshot light shows. The
+  // estimate still says about half the error there (1.5% for 2.8%): the early stop's
+  // shortfall at an edge is larger than the uniform ambient's (issue 27, item 4: open).
   int found = 0;
   for (int i = 0; i < 10; ++i) found += rank[by_measure[i]] < n / 10;
   EXPECT_GE(found, 5);
+  EXPECT_LT(rank[by_measure[0]], n / 100);
 }
 
 }  // namespace
