@@ -1,6 +1,7 @@
 #include "radiosity/form_factor.h"
 
 #include <cmath>
+#include <vector>
 
 namespace dynrad::rad {
 
@@ -75,6 +76,13 @@ double lambert_term(const Vec3d& x, const Vec3d& n, const Vec3d& a, const Vec3d&
   return angle_between(length, OpenMesh::dot(r0, r1)) * OpenMesh::dot(n, c) / length;
 }
 
+// (i, j) -> node index, nodes listed by i then j (i + j <= 4).
+constexpr int node_index(int i, int j) {
+  int index = 0;
+  for (int a = 0; a < i; ++a) index += 5 - a;
+  return index + j;
+}
+
 }  // namespace
 
 double point_to_quartered_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
@@ -105,6 +113,104 @@ double point_to_quartered_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* 
                      (weight[1] - weight[3]) * lambert_term(x, n, m12, m01) +
                      (weight[2] - weight[3]) * lambert_term(x, n, m20, m12);
   return (whole < 0 ? -sum : sum) / (2.0 * M_PI);
+}
+
+const std::array<std::array<int, 3>, kTriangleParts>& triangle_part_nodes() {
+  static const std::array<std::array<int, 3>, kTriangleParts> nodes = [] {
+    std::array<std::array<int, 3>, kTriangleParts> out{};
+    int s = 0;
+    for (int i = 0; i <= 3; ++i)
+      for (int j = 0; i + j <= 3; ++j) out[s++] = {node_index(i, j), node_index(i + 1, j), node_index(i, j + 1)};
+    for (int i = 0; i <= 2; ++i)
+      for (int j = 0; i + j <= 2; ++j) out[s++] = {node_index(i + 1, j), node_index(i + 1, j + 1), node_index(i, j + 1)};
+    return out;
+  }();
+  return nodes;
+}
+
+namespace {
+
+// An edge of the 16-part grid, from node a to node b: walked that way by part `left`
+// (counter-clockwise) and the other way by part `right` (-1 on the boundary).
+struct GridEdge {
+  int a, b, left, right;
+};
+
+// The grid's 30 edges, a shared one once.
+const std::vector<GridEdge>& grid_edges() {
+  static const std::vector<GridEdge> edges = [] {
+    const auto& nodes = triangle_part_nodes();
+    std::vector<GridEdge> out;
+    for (int s = 0; s < kTriangleParts; ++s)
+      for (int k = 0; k < 3; ++k) {
+        const int a = nodes[s][k], b = nodes[s][(k + 1) % 3];
+        int right = -1;  // the part that walks b -> a
+        for (int r = 0; r < kTriangleParts; ++r)
+          for (int q = 0; q < 3; ++q)
+            if (nodes[r][q] == b && nodes[r][(q + 1) % 3] == a) right = r;
+        if (right < 0 || s < right) out.push_back({a, b, s, right});  // a shared edge once
+      }
+    return out;
+  }();
+  return edges;
+}
+
+// The grid's nodes, c0 + i/4 (c1 - c0) + j/4 (c2 - c0), with the corners exact.
+void triangle_nodes(const Vec3d* corners, Vec3d* node) {
+  const Vec3d u = (corners[1] - corners[0]) * 0.25, v = (corners[2] - corners[0]) * 0.25;
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; i + j <= 4; ++j) node[node_index(i, j)] = corners[0] + u * i + v * j;
+  node[node_index(0, 0)] = corners[0];  // not sums of quarters
+  node[node_index(4, 0)] = corners[1];
+  node[node_index(0, 4)] = corners[2];
+}
+
+}  // namespace
+
+void triangle_parts(const Vec3d* corners, Vec3d (*parts)[3]) {
+  Vec3d node[kTriangleNodes];
+  triangle_nodes(corners, node);
+  const auto& nodes = triangle_part_nodes();
+  for (int s = 0; s < kTriangleParts; ++s)
+    for (int k = 0; k < 3; ++k) parts[s][k] = node[nodes[s][k]];
+}
+
+double point_to_parted_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
+                                const Vec3d& front) {
+  if (OpenMesh::dot(front, x - corners[0]) <= 0) return 0.0;  // x is behind the sender
+  Vec3d node[kTriangleNodes];
+  triangle_nodes(corners, node);
+  // Parts wholly above x's horizon are summed by their edges; parts across it are
+  // clipped (point_to_polygon); parts wholly below see nothing of x.
+  const auto& nodes = triangle_part_nodes();
+  double height[kTriangleNodes];
+  for (int k = 0; k < kTriangleNodes; ++k) height[k] = OpenMesh::dot(node[k] - x, n);
+  bool above[kTriangleParts];
+  double f = 0;
+  for (int s = 0; s < kTriangleParts; ++s) {
+    const double h0 = height[nodes[s][0]], h1 = height[nodes[s][1]], h2 = height[nodes[s][2]];
+    above[s] = h0 >= 0 && h1 >= 0 && h2 >= 0;
+    const bool below = h0 <= 0 && h1 <= 0 && h2 <= 0;
+    if (!above[s] && !below) {
+      const Vec3d part[3] = {node[nodes[s][0]], node[nodes[s][1]], node[nodes[s][2]]};
+      f += weight[s] * point_to_polygon(x, n, part, 3, front);
+    }
+  }
+  // Every part above the horizon has an edge sum of the same sign (all are
+  // counter-clockwise and seen from the same side), so their weighted sum of absolute
+  // values is that sign times the weighted sum of their edge terms. A Lambert term
+  // changes sign with the edge's direction, so each grid edge is taken once, with the
+  // weight of the part on its left minus that of the part on its right (0 for no part,
+  // or one not above).
+  double whole = 0, sum = 0;
+  for (const GridEdge& e : grid_edges()) {
+    const bool left = above[e.left], right = e.right >= 0 && above[e.right];
+    if (left == right && (!left || weight[e.left] == weight[e.right])) continue;  // cancels
+    const double t = lambert_term(x, n, node[e.a], node[e.b]);
+    sum += ((left ? weight[e.left] : 0.0) - (right ? weight[e.right] : 0.0)) * t;
+    whole += ((left ? 1.0 : 0.0) - (right ? 1.0 : 0.0)) * t;
+  }
+  return f + (whole < 0 ? -sum : sum) / (2.0 * M_PI);
 }
 
 }  // namespace dynrad::rad

@@ -5,6 +5,7 @@
 
 #include "mesh/types.h"
 
+#include <array>
 #include <cmath>
 
 namespace dynrad::rad {
@@ -25,6 +26,27 @@ double point_to_polygon(const Vec3d& x, const Vec3d& n, const Vec3d* corners, in
 // the front, as for point_to_polygon.
 double point_to_quartered_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
                                    const Vec3d& front);
+
+// A triangle cut into kTriangleParts = 16 equal parts: its edges in quarters, the grid
+// lines through the cuts parallel to the edges. Nodes are c0 + i/4 (c1 - c0) + j/4
+// (c2 - c0) for i + j <= 4; the parts (each counter-clockwise when the triangle is)
+// are first the ten with a corner's orientation, (i, j), (i + 1, j), (i, j + 1) for
+// i + j <= 3, then the six turned over, (i + 1, j), (i + 1, j + 1), (i, j + 1) for
+// i + j <= 2, each in order of i then j.
+inline constexpr int kTriangleParts = 16;
+void triangle_parts(const Vec3d* corners, Vec3d (*parts)[3]);
+// Per part, the indices of its three nodes in the order (i, j) by i then j.
+const std::array<std::array<int, 3>, kTriangleParts>& triangle_part_nodes();
+inline constexpr int kTriangleNodes = 15;
+
+// The sum over triangle_parts() of weight[s] times the form factor from x to part s
+// (`corners` counter-clockwise seen from the front, as for point_to_polygon). The parts
+// wholly above x's horizon by one Lambert term per grid edge they bound (30 at most):
+// an edge two of them share is walked once each way, so it counts for the difference
+// of their weights and cancels where they are equal. Parts across the horizon are
+// clipped, each on its own; parts below it add nothing.
+double point_to_parted_triangle(const Vec3d& x, const Vec3d& n, const Vec3d* corners, const double* weight,
+                                const Vec3d& front);
 
 // The point-to-area approximation: a polygon of `area` around `centre` (unit front
 // normal `front`) seen from x as if it were a differential area, A cos cos / (pi r^2).

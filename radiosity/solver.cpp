@@ -658,13 +658,31 @@ void Solver::gather_new_elements(std::size_t first) {
   // Geometry only (sum of F times shot radiosity) is shared by the facing; emission
   // and reflectance are each element's own (a lamp and the ceiling around it share a
   // facing and the border vertices).
+  // Each patch's shots were shaped (shape_of); what they shipped in all has the shape
+  // of what its nodes shipped (Patch::shot_at_nodes), which the gather gives back: a
+  // new vertex then gets the light its neighbours got, not that of even senders.
+  std::vector<SenderShape> shipped(shooters.size());
+  if (options_.shaped_senders)
+    for (std::size_t i = 0; i < shooters.size(); ++i)
+      if (!is_luminaire(shooters[i]) && !is_cluster(shooters[i]) && shooters[i] != sender_)
+        shipped[i] = shipped_shape(shooters[i]);
   std::vector<Rgb> gathered(todo.size());
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t n) {
     const Receiver& r = receivers_[todo[n]];
     const Patch& patch = patches_[r.patch];
     Rgb sum;
-    for (std::uint32_t j : shooters)
-      if (j != r.patch) sum += shot_of(j) * point_form_factor(r.vertex, r.point, patch.normal, j, nullptr);
+    for (std::size_t i = 0; i < shooters.size(); ++i) {
+      const std::uint32_t j = shooters[i];
+      if (j == r.patch) continue;
+      double flat = 0;
+      double f = point_form_factor(r.vertex, r.point, patch.normal, j, &flat);
+      if (shipped[i].on && f > 0 && flat > 0) {
+        const Patch& q = patches_[j];
+        f *= shaped_closed_form(r.point, patch.normal, q.corners, q.centre, q.radius, q.area, q.normal, shipped[i]) /
+             flat;
+      }
+      sum += shot_of(j) * f;
+    }
     gathered[n] = sum;
   });
   for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e) {
@@ -737,43 +755,78 @@ void Solver::shape_sender() {
 }
 
 Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
-  SenderShape shape;
   Patch& sender = patches_[patch];
   const ElementId root = hierarchy_.patch_root(patch);
-  const auto& c = sender.corners;
-  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
-  // The unshot radiosity at the corners and edge midpoints (nodes 0-2 and 3-5):
+  Vec3d parts[kTriangleParts][3];
+  triangle_parts(sender.corners.data(), parts);
+  const auto& part_nodes = triangle_part_nodes();
+  // The nodes' positions, from the parts that have them.
+  Vec3d node[kTriangleNodes];
+  for (int s = 0; s < kTriangleParts; ++s)
+    for (int k = 0; k < 3; ++k) node[part_nodes[s][k]] = parts[s][k];
+  // The unshot radiosity at the nodes (the corners and the quarter grid's points):
   // everything they gained since the sender last shot (its emission, before its first
   // shot), plus what an overshoot left (below 0).
-  double b[6];
-  for (int k = 0; k < 6; ++k) {
-    const double now = k < 3 ? value_[root][k].luminance() : luminance_at(root, k == 3 ? m01 : k == 4 ? m12 : m20);
+  double b[kTriangleNodes];
+  for (int k = 0; k < kTriangleNodes; ++k) {
+    const int corner = k == 0 ? 0 : k == kTriangleNodes - 1 ? 1 : k == 4 ? 2 : -1;  // nodes (0,0), (4,0), (0,4)
+    const double now = corner >= 0 ? value_[root][corner].luminance() : luminance_at(root, node[k]);
     b[k] = now - sender.shot_at_nodes[k];
-    sender.shot_at_nodes[k] = now - (1 - options_.overshoot) * b[k];
   }
-  // The four parts' nodes: the corner parts, then the middle one (the parts of
-  // point_to_quartered_triangle).
-  static constexpr int kNodes[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
-  double part_mean[4], mean = 0;
-  for (int s = 0; s < 4; ++s) {
-    part_mean[s] = (b[kNodes[s][0]] + b[kNodes[s][1]] + b[kNodes[s][2]]) / 3;
-    mean += part_mean[s] / 4;
-  }
-  // The shape is the parts' deviation from their mean, added to the sender's mean
-  // unshot radiosity m (from the energy it received, which also knows its interior).
-  // Added, not scaled: over a whole solve the deviations sum to those of the sender's
-  // final values, so where the answer is even (a furnace) the shapes cancel.
+  // The quarter grid's nodes that are not corners or edge midpoints each lie halfway
+  // between two that are (kHalfway); where the unshot values there are what a line
+  // between those gives, the four midpoint parts carry the shape (SenderShape::fine).
+  // Otherwise the bend stays unshot, for a later shot to ship when it has grown: what
+  // the shots ship then sums to the sender's final values, even shapes cancel.
+  double bend = 0;
+  for (const auto& h : kHalfway) bend = std::max(bend, std::abs(b[h[0]] - 0.5 * (b[h[1]] + b[h[2]])));
+  const bool fine = bend > kShapeBend * std::abs(m);
+  if (!fine)
+    for (const auto& h : kHalfway) b[h[0]] = 0.5 * (b[h[1]] + b[h[2]]);
+  // What this shot ships moves shot_at_nodes on (all of it when not over-relaxed).
+  for (int k = 0; k < kTriangleNodes; ++k) sender.shot_at_nodes[k] += options_.overshoot * b[k];
+  return shape_from_nodes(sender.corners, b, m, fine);
+}
+
+Solver::SenderShape Solver::shipped_shape(std::uint32_t patch) const {
+  const Patch& sender = patches_[patch];
+  return shape_from_nodes(sender.corners, sender.shot_at_nodes.data(), sender.shot.luminance(), true);
+}
+
+Solver::SenderShape Solver::shape_from_nodes(const std::array<Vec3d, 3>& c, const double* b, double m, bool fine) {
+  SenderShape shape;
   if (!(std::abs(m) > 0)) return shape;
+  const auto& part_nodes = triangle_part_nodes();
+  double part_mean[kTriangleParts], mean = 0;
+  for (int s = 0; s < kTriangleParts; ++s) {
+    part_mean[s] = (b[part_nodes[s][0]] + b[part_nodes[s][1]] + b[part_nodes[s][2]]) / 3;
+    mean += part_mean[s] / kTriangleParts;
+  }
+  // The shape is the parts' deviation from their mean, added to the mean radiosity m
+  // (from the energy the sender received, which also knows its interior). Added, not
+  // scaled: over a whole solve the deviations sum to those of the sender's final
+  // values, so where the answer is even (a furnace) the shapes cancel.
   double spread = 0;
-  for (int s = 0; s < 4; ++s) spread = std::max(spread, std::abs(part_mean[s] - mean));
+  for (int s = 0; s < kTriangleParts; ++s) spread = std::max(spread, std::abs(part_mean[s] - mean));
   if (spread < 1e-3 * std::abs(m)) return shape;  // even enough: one closed form
+  Vec3d parts[kTriangleParts][3];
+  triangle_parts(c.data(), parts);
+  shape.fine = fine;
   shape.centroid = (c[0] + c[1] + c[2]) / 3.0;
   shape.dipole = Vec3d(0, 0, 0);
-  for (int s = 0; s < 4; ++s) {
+  for (int s = 0; s < kTriangleParts; ++s) {
     shape.weight[s] = 1 + (part_mean[s] - mean) / m;
-    shape.max_weight = std::max(shape.max_weight, std::abs(shape.weight[s]));
-    if (s < 3)  // corner part s's centroid is halfway from the sender's to corner s
-      shape.dipole += (c[s] - shape.centroid) * (0.5 * (shape.weight[s] - 1) / 4);
+    if (fine) shape.max_weight = std::max(shape.max_weight, std::abs(shape.weight[s]));
+    const Vec3d part_centroid = (parts[s][0] + parts[s][1] + parts[s][2]) / 3.0;
+    shape.dipole += (part_centroid - shape.centroid) * ((shape.weight[s] - 1) / kTriangleParts);
+  }
+  // The midpoint parts' weights: the means of the small parts in them (a line's mean
+  // on a triangle is the mean at its corners, so these are the corner nodes' means).
+  for (int q = 0; q < 4; ++q) {
+    double w = 0;
+    for (int k = 0; k < 3; ++k) w += b[kMidpointParts[q][k]];
+    shape.coarse[q] = 1 + (w / 3 - mean) / m;
+    if (!fine) shape.max_weight = std::max(shape.max_weight, std::abs(shape.coarse[q]));
   }
   shape.on = true;
   return shape;
@@ -783,10 +836,11 @@ double Solver::shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::arr
                                   const Vec3d& centre, double radius, double area, const Vec3d& normal,
                                   const SenderShape& shape) {
   if (shape.on && (x - centre).sqrnorm() < kShapeNear * kShapeNear * radius * radius)
-    return point_to_quartered_triangle(x, n, corners.data(), shape.weight.data(), normal);
+    return shape.fine ? point_to_parted_triangle(x, n, corners.data(), shape.weight.data(), normal)
+                      : point_to_quartered_triangle(x, n, corners.data(), shape.coarse.data(), normal);
   double f = point_to_triangle(x, n, corners[0], corners[1], corners[2], normal);
   if (shape.on && f > 0) {
-    // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a quarter
+    // The parts' corrections (w - 1) K(c_s) with K the point-to-area form of a part
     // of the sender sum to first order to grad K(c) . dipole, the weights' mean being 1.
     const Vec3d d = shape.centroid - x;
     const double r2 = d.sqrnorm(), a = OpenMesh::dot(n, d), b = -OpenMesh::dot(normal, d);

@@ -239,5 +239,51 @@ TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
   EXPECT_EQ(point_to_quartered_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1], front), 0.0);
 }
 
+// The 16-part triangle's grid-edge sum against the parts' own closed forms, for points
+// all around a triangle: in front, beside it (its parts clipped at the point's
+// horizon), tilted, close to it and far, with weights above and below 1.
+TEST(FormFactor, PartedTriangleIsTheWeightedSumOfItsParts) {
+  const Vec3d c[3] = {Vec3d(0, 0, 0), Vec3d(2, 0.3, 0), Vec3d(0.4, 1.7, 0)};
+  const Vec3d front(0, 0, 1);
+  Vec3d parts[kTriangleParts][3];
+  triangle_parts(c, parts);
+  // The parts tile the triangle: equal areas that sum to the whole, each facing front.
+  const double area = 0.5 * OpenMesh::cross(c[1] - c[0], c[2] - c[0]).norm();
+  for (const auto& p : parts) {
+    const Vec3d twice = OpenMesh::cross(p[1] - p[0], p[2] - p[0]);
+    EXPECT_NEAR(0.5 * twice.norm(), area / kTriangleParts, 1e-12);
+    EXPECT_GT(OpenMesh::dot(twice, front), 0);
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::array<std::array<double, kTriangleParts>, 3> weights;
+  for (int s = 0; s < kTriangleParts; ++s) {
+    weights[0][s] = 1;
+    weights[1][s] = 1 + 0.5 * u(rng);
+    weights[2][s] = 1 + 1.5 * u(rng);  // some below 0
+  }
+  int unclipped = 0, clipped = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3d x(u(rng) * 3, u(rng) * 3, 0.05 + (u(rng) + 1) * (trial % 2 ? 0.3 : 3));
+    const Vec3d n = Vec3d(u(rng), u(rng), u(rng) - 0.2).normalized();
+    bool clips = false;
+    for (const Vec3d& p : c) clips = clips || OpenMesh::dot(p - x, n) < 0;
+    (clips ? clipped : unclipped) += 1;
+    for (const auto& w : weights) {
+      double expected = 0;
+      for (int s = 0; s < kTriangleParts; ++s) expected += w[s] * point_to_polygon(x, n, parts[s], 3, front);
+      EXPECT_NEAR(point_to_parted_triangle(x, n, c, w.data(), front), expected, 1e-12 * (1 + std::abs(expected)))
+          << "x " << x << " n " << n;
+    }
+    // Equal weights: the whole triangle.
+    EXPECT_NEAR(point_to_parted_triangle(x, n, c, weights[0].data(), front), point_to_polygon(x, n, c, 3, front),
+                1e-12);
+  }
+  EXPECT_GT(unclipped, 300);  // both paths were taken
+  EXPECT_GT(clipped, 300);
+  // Behind the triangle: nothing.
+  EXPECT_EQ(point_to_parted_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1].data(), front), 0.0);
+}
+
 }  // namespace
 }  // namespace dynrad::rad

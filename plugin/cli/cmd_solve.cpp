@@ -584,7 +584,7 @@ Command add_solve_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.1));
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
-                   "corners and edge midpoints");
+                   "corners and a quarter grid of points on it");
   command->add_flag("!--no-clusters", options->clusters,
                     "Solve every small patch on its own instead of grouping small patches (frames, handles, "
                     "furniture parts) into face clusters that send and receive light as one");

@@ -141,7 +141,7 @@ class DynradSettings(bpy.types.PropertyGroup):
         default=1.0, min=0.05, max=1.95, precision=2)
     shaped_senders: BoolProperty(
         name="Shaped senders",
-        description="Shoot each patch's light shaped by its corners and edge midpoints (off: evenly, as "
+        description="Shoot each patch's light shaped by its corners and a quarter grid of points (off: evenly, as "
                     "dynrad solve --flat-senders)",
         default=True)
     last_report: StringProperty(name="Last report", default="")

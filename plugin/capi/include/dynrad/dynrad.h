@@ -158,8 +158,8 @@ DYNRAD_API dynrad_status dynrad_options_set_simplify(dynrad_options* options, in
  * (nonzero: on, the default, as `dynrad solve`; 0: as `--no-imprint`). See the README,
  * "Imprinting". */
 DYNRAD_API dynrad_status dynrad_options_set_imprint(dynrad_options* options, int on);
-/* Shape each shot's unshot radiosity by the sender's corners and edge midpoints
- * (nonzero: on, the default) or shoot it evenly (0: `--flat-senders`). */
+/* Shape each shot's unshot radiosity by the sender's corners and a quarter grid of
+ * points on it (nonzero: on, the default) or shoot it evenly (0: `--flat-senders`). */
 DYNRAD_API dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on);
 /* Display exposure (> 0) for dynrad_result_display; 0 (default): automatic, as the
  * command line (the 99th percentile of the lit surface's luminance, by area, maps to 0.9). */
