@@ -38,6 +38,13 @@ void triangle_parts(const Vec3d* corners, Vec3d (*parts)[3]);
 // Per part, the indices of its three nodes in the order (i, j) by i then j.
 const std::array<std::array<int, 3>, kTriangleParts>& triangle_part_nodes();
 inline constexpr int kTriangleNodes = 15;
+// The grid's nodes that are neither corners nor edge midpoints, each with the two of
+// those it lies halfway between: {node, end, end}.
+inline constexpr int kGridHalfway[9][3] = {{5, 0, 9},    {12, 9, 14}, {1, 0, 2},  {3, 2, 4}, {6, 9, 2},
+                                           {13, 14, 11}, {8, 11, 4},  {10, 9, 11}, {7, 2, 11}};
+// The four parts cut at the edge midpoints (point_to_quartered_triangle's), by their
+// corner nodes: the corner parts of corners 0, 1 and 2, then the middle one.
+inline constexpr int kMidpointParts[4][3] = {{0, 9, 2}, {9, 14, 11}, {2, 11, 4}, {9, 11, 2}};
 
 // The sum over triangle_parts() of weight[s] times the form factor from x to part s
 // (`corners` counter-clockwise seen from the front, as for point_to_polygon). The parts

@@ -774,15 +774,15 @@ Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
     b[k] = now - sender.shot_at_nodes[k];
   }
   // The quarter grid's nodes that are not corners or edge midpoints each lie halfway
-  // between two that are (kHalfway); where the unshot values there are what a line
+  // between two that are (kGridHalfway); where the unshot values there are what a line
   // between those gives, the four midpoint parts carry the shape (SenderShape::fine).
   // Otherwise the bend stays unshot, for a later shot to ship when it has grown: what
   // the shots ship then sums to the sender's final values, even shapes cancel.
   double bend = 0;
-  for (const auto& h : kHalfway) bend = std::max(bend, std::abs(b[h[0]] - 0.5 * (b[h[1]] + b[h[2]])));
+  for (const auto& h : kGridHalfway) bend = std::max(bend, std::abs(b[h[0]] - 0.5 * (b[h[1]] + b[h[2]])));
   const bool fine = bend > kShapeBend * std::abs(m);
   if (!fine)
-    for (const auto& h : kHalfway) b[h[0]] = 0.5 * (b[h[1]] + b[h[2]]);
+    for (const auto& h : kGridHalfway) b[h[0]] = 0.5 * (b[h[1]] + b[h[2]]);
   // What this shot ships moves shot_at_nodes on (all of it when not over-relaxed).
   for (int k = 0; k < kTriangleNodes; ++k) sender.shot_at_nodes[k] += options_.overshoot * b[k];
   return shape_from_nodes(sender.corners, b, m, fine);

@@ -6,9 +6,9 @@
 // State. Every element of the hierarchy, interior ones included, keeps the cumulated
 // radiosity at its three corners. New elements interpolate their parent's corner values
 // (linear across the flat parent, so a midpoint gets the mean of its edge's ends).
-// Patches keep their unshot radiosity (its mean; each shot gives it a shape from the
-// patch's corners and a quarter grid of points, see SenderShape). Receivers are the element corners; a
-// corner's form factor to the sender is Lambert's closed form at the corner times the
+// Patches keep their unshot radiosity (its mean; each shot gives it a shape from a
+// quarter grid of points on the patch, see SenderShape). Receivers are the element
+// corners; a corner's form factor to the sender is Lambert's closed form at the corner times the
 // fraction of rays that reach the sender, evaluated once per shot for each vertex and
 // patch.
 #pragma once
@@ -236,8 +236,9 @@ class Solver {
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
     Vec3d centre;                   // centre and radius of a sphere around the patch
     double radius = 0;
-    // Luminance at the patch's corners and edge midpoints (see shape_sender()) that is
-    // not unshot: the values there minus this are the shape of its unshot radiosity.
+    // Luminance at the nodes of the patch's quarter grid (triangle_parts(); see
+    // shape_of()) that has been shot: the values there minus this are the shape of its
+    // unshot radiosity.
     std::array<double, kTriangleNodes> shot_at_nodes{};
     // A member of a face cluster: it sends nothing of its own (its reflected light goes
     // to its part of the cluster) and is not refined.
@@ -353,12 +354,6 @@ class Solver {
   // against 6-9% with the 16 parts for every shot (more Lambert terms near senders,
   // and the larger weights cull fewer receivers).
   static constexpr double kShapeBend = 0.02;
-  // The quarter grid's nodes (form_factor.h's numbering) that are neither corners nor
-  // edge midpoints, each with the two of those it lies halfway between.
-  static constexpr int kHalfway[9][3] = {{5, 0, 9}, {12, 9, 14}, {1, 0, 2}, {3, 2, 4}, {6, 9, 2},
-                                         {13, 14, 11}, {8, 11, 4}, {10, 9, 11}, {7, 2, 11}};
-  // The midpoint parts' corner nodes: corner parts 0-2, then the middle one.
-  static constexpr int kMidpointParts[4][3] = {{0, 9, 2}, {9, 14, 11}, {2, 11, 4}, {9, 11, 2}};
   void shape_sender();
   // The shape of patch `patch`'s unshot radiosity for a shot of mean luminance m (see
   // SenderShape); moves the patch's shot_at_nodes on to this shot.

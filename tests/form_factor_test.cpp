@@ -239,6 +239,30 @@ TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
   EXPECT_EQ(point_to_quartered_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1], front), 0.0);
 }
 
+// The grid's node tables: the halfway nodes lie halfway between their ends, and the
+// midpoint parts are point_to_quartered_triangle's (corner 0, the midpoints of edges
+// 01 and 20, and so on).
+TEST(FormFactor, GridTablesNameTheNodesTheySay) {
+  const Vec3d c[3] = {Vec3d(0, 0, 0), Vec3d(2, 0.3, 0), Vec3d(0.4, 1.7, 0.2)};
+  Vec3d parts[kTriangleParts][3];
+  triangle_parts(c, parts);
+  Vec3d node[kTriangleNodes];
+  const auto& nodes = triangle_part_nodes();
+  for (int s = 0; s < kTriangleParts; ++s)
+    for (int k = 0; k < 3; ++k) node[nodes[s][k]] = parts[s][k];
+  for (const auto& h : kGridHalfway) EXPECT_LT((node[h[0]] - (node[h[1]] + node[h[2]]) * 0.5).norm(), 1e-12);
+  const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
+  const Vec3d quarter[4][3] = {{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}};
+  for (int q = 0; q < 4; ++q) {
+    // the same three points, in any order
+    for (int k = 0; k < 3; ++k) {
+      double nearest = 1e9;
+      for (int j = 0; j < 3; ++j) nearest = std::min(nearest, (node[kMidpointParts[q][j]] - quarter[q][k]).norm());
+      EXPECT_LT(nearest, 1e-12) << "part " << q;
+    }
+  }
+}
+
 // The 16-part triangle's grid-edge sum against the parts' own closed forms, for points
 // all around a triangle: in front, beside it (its parts clipped at the point's
 // horizon), tilted, close to it and far, with weights above and below 1.
