@@ -63,12 +63,13 @@ CommandResult run_dynrad(const std::string& arguments) {
   return run_shell(std::string("'") + DYNRAD_EXE + "' " + arguments);
 }
 
-CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name) {
+CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name,
+                                    const std::string& ready) {
   TempDir dir;
   const std::string log = dir.path("log.txt");
   // Up to 10 minutes for loading (sanitizer builds on a busy machine are slow).
   return run_shell("( '" + std::string(DYNRAD_EXE) + "' " + arguments + " > '" + log + "' 2>&1 & pid=$!; " +
-                   "for i in $(seq 3000); do grep -q ' patches' '" + log +
+                   "for i in $(seq 3000); do grep -qF '" + ready + "' '" + log +
                    "' && break; kill -0 $pid 2>/dev/null || break; "
                    "sleep 0.2; done; sleep " +
                    std::to_string(seconds) + "; kill -" + signal_name + " $pid; wait $pid; " + "status=$?; cat '" +
