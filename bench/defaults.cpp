@@ -3,7 +3,7 @@
 // diagonal, stop at 1% unshot, no ambient term). Every run is the command line itself,
 // in a child process, as a user runs it; accuracy is read back with `dynrad probe`.
 //
-//   1990 room: mean and largest relative error over the comparison grid on floor and
+//   1990 room (defaults, old defaults, --quality high): mean and largest relative error over the comparison grid on floor and
 //     ceiling (476 points: the 4 ceiling points on the source's corners are left out)
 //     against the path-traced reference tests/data/globillum_room_reference.txt
 //     (tests/reference/box_tracer.h: 0.1% standard error per point); solve seconds
@@ -180,6 +180,7 @@ int main(int argc, char** argv) {
   const std::vector<Config> configs = {
       {"defaults (no options)", ""},
       {"old defaults", "--method progressive --no-ambient --converge 0.01"},
+      {"--quality high", "--quality high"},
   };
   const std::vector<ReferencePoint> reference = read_reference(DYNRAD_TEST_DATA_DIR "/globillum_room_reference.txt");
   const fs::path lit = kWork / "lit.ply", report = kWork / "report.json";
@@ -193,7 +194,7 @@ int main(int argc, char** argv) {
               reference.size(), runs);
   std::printf("%-24s %9s %9s %9s %9s %9s %7s %9s %10s\n", "configuration", "mean", "max", "floor", "ceiling",
               "estimate", "shots", "elements", "seconds");
-  double seconds_of[2] = {0, 0};
+  double seconds_of[3] = {0, 0, 0};
   for (std::size_t c = 0; c < configs.size(); ++c) {
     std::vector<double> seconds;
     nlohmann::json last;
