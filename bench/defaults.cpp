@@ -3,8 +3,9 @@
 // diagonal, stop at 1% unshot, no ambient term). Every run is the command line itself,
 // in a child process, as a user runs it; accuracy is read back with `dynrad probe`.
 //
-//   1990 room (defaults, old defaults, --quality high): mean and largest relative error over the comparison grid on floor and
-//     ceiling (476 points: the 4 ceiling points on the source's corners are left out)
+//   1990 room (defaults, old defaults, --quality high): mean and largest relative error
+//     over the comparison grid on floor and ceiling (476 points: the 4 ceiling points
+//     on the source's corners are left out)
 //     against the path-traced reference tests/data/globillum_room_reference.txt
 //     (tests/reference/box_tracer.h: 0.1% standard error per point); solve seconds
 //     from the report, median of the runs.
