@@ -155,17 +155,16 @@ const std::vector<GridEdge>& grid_edges() {
   return edges;
 }
 
-// The grid's nodes, c0 + i/4 (c1 - c0) + j/4 (c2 - c0), with the corners exact.
+}  // namespace
+
 void triangle_nodes(const Vec3d* corners, Vec3d* node) {
   const Vec3d u = (corners[1] - corners[0]) * 0.25, v = (corners[2] - corners[0]) * 0.25;
   for (int i = 0; i <= 4; ++i)
     for (int j = 0; i + j <= 4; ++j) node[node_index(i, j)] = corners[0] + u * i + v * j;
-  node[node_index(0, 0)] = corners[0];  // not sums of quarters
-  node[node_index(4, 0)] = corners[1];
-  node[node_index(0, 4)] = corners[2];
+  static_assert(kGridCorners[0] == node_index(0, 0) && kGridCorners[1] == node_index(4, 0) &&
+                kGridCorners[2] == node_index(0, 4));
+  for (int k = 0; k < 3; ++k) node[kGridCorners[k]] = corners[k];  // not sums of quarters
 }
-
-}  // namespace
 
 void triangle_parts(const Vec3d* corners, Vec3d (*parts)[3]) {
   Vec3d node[kTriangleNodes];

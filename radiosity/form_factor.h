@@ -38,6 +38,10 @@ void triangle_parts(const Vec3d* corners, Vec3d (*parts)[3]);
 // Per part, the indices of its three nodes in the order (i, j) by i then j.
 const std::array<std::array<int, 3>, kTriangleParts>& triangle_part_nodes();
 inline constexpr int kTriangleNodes = 15;
+// The grid's nodes, c0 + i/4 (c1 - c0) + j/4 (c2 - c0), in the order (i, j) by i then j,
+// the corners exactly: node[kGridCorners[k]] is corners[k].
+void triangle_nodes(const Vec3d* corners, Vec3d* node);
+inline constexpr int kGridCorners[3] = {0, 14, 4};
 // The grid's nodes that are neither corners nor edge midpoints, each with the two of
 // those it lies halfway between: {node, end, end}.
 inline constexpr int kGridHalfway[9][3] = {{5, 0, 9},    {12, 9, 14}, {1, 0, 2},  {3, 2, 4}, {6, 9, 2},

@@ -55,10 +55,10 @@ struct SolveOptions {
   bool cull = true;
   double negligible_share = 1e-4;
   // Shaped senders: a patch's unshot radiosity is one mean, but the light it has
-  // received is not even across it. Each shot gives the mean a shape from what the
-  // sender's corners and a quarter grid of points on it gained since it last shot, with the same power;
-  // receivers near the sender see it (on 2 m patches of the 1990 room the error the
-  // senders leave falls from 0.80% to 0.23%: bench/README.md). The shape is
+  // received is not even across it. Each shot gives the mean a shape from what a
+  // quarter grid of points on the sender gained since it last shot, with the same
+  // power; receivers near the sender see it (on 2 m patches of the 1990 room the error
+  // the senders leave falls from 0.80% to 0.23%: bench/README.md). The shape is
   // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;

@@ -757,20 +757,17 @@ void Solver::shape_sender() {
 Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
   Patch& sender = patches_[patch];
   const ElementId root = hierarchy_.patch_root(patch);
-  Vec3d parts[kTriangleParts][3];
-  triangle_parts(sender.corners.data(), parts);
-  const auto& part_nodes = triangle_part_nodes();
-  // The nodes' positions, from the parts that have them.
   Vec3d node[kTriangleNodes];
-  for (int s = 0; s < kTriangleParts; ++s)
-    for (int k = 0; k < 3; ++k) node[part_nodes[s][k]] = parts[s][k];
-  // The unshot radiosity at the nodes (the corners and the quarter grid's points):
-  // everything they gained since the sender last shot (its emission, before its first
-  // shot), plus what an overshoot left (below 0).
+  triangle_nodes(sender.corners.data(), node);
+  // The unshot radiosity at the nodes (the patch's own corner values at its corners,
+  // read through its element tree elsewhere): everything they gained since the sender
+  // last shot (its emission, before its first shot), plus what an overshoot left
+  // (below 0).
   double b[kTriangleNodes];
   for (int k = 0; k < kTriangleNodes; ++k) {
-    const int corner = k == 0 ? 0 : k == kTriangleNodes - 1 ? 1 : k == 4 ? 2 : -1;  // nodes (0,0), (4,0), (0,4)
-    const double now = corner >= 0 ? value_[root][corner].luminance() : luminance_at(root, node[k]);
+    const int corner = static_cast<int>(std::find(std::begin(kGridCorners), std::end(kGridCorners), k) -
+                                        std::begin(kGridCorners));
+    const double now = corner < 3 ? value_[root][corner].luminance() : luminance_at(root, node[k]);
     b[k] = now - sender.shot_at_nodes[k];
   }
   // The quarter grid's nodes that are not corners or edge midpoints each lie halfway
@@ -809,25 +806,26 @@ Solver::SenderShape Solver::shape_from_nodes(const std::array<Vec3d, 3>& c, cons
   double spread = 0;
   for (int s = 0; s < kTriangleParts; ++s) spread = std::max(spread, std::abs(part_mean[s] - mean));
   if (spread < 1e-3 * std::abs(m)) return shape;  // even enough: one closed form
-  Vec3d parts[kTriangleParts][3];
-  triangle_parts(c.data(), parts);
+  Vec3d node[kTriangleNodes];
+  triangle_nodes(c.data(), node);
   shape.fine = fine;
   shape.centroid = (c[0] + c[1] + c[2]) / 3.0;
   shape.dipole = Vec3d(0, 0, 0);
   for (int s = 0; s < kTriangleParts; ++s) {
     shape.weight[s] = 1 + (part_mean[s] - mean) / m;
     if (fine) shape.max_weight = std::max(shape.max_weight, std::abs(shape.weight[s]));
-    const Vec3d part_centroid = (parts[s][0] + parts[s][1] + parts[s][2]) / 3.0;
+    const Vec3d part_centroid = (node[part_nodes[s][0]] + node[part_nodes[s][1]] + node[part_nodes[s][2]]) / 3.0;
     shape.dipole += (part_centroid - shape.centroid) * ((shape.weight[s] - 1) / kTriangleParts);
   }
   // The midpoint parts' weights: the means of the small parts in them (a line's mean
   // on a triangle is the mean at its corners, so these are the corner nodes' means).
-  for (int q = 0; q < 4; ++q) {
-    double w = 0;
-    for (int k = 0; k < 3; ++k) w += b[kMidpointParts[q][k]];
-    shape.coarse[q] = 1 + (w / 3 - mean) / m;
-    if (!fine) shape.max_weight = std::max(shape.max_weight, std::abs(shape.coarse[q]));
-  }
+  if (!fine)
+    for (int q = 0; q < 4; ++q) {
+      double w = 0;
+      for (int k = 0; k < 3; ++k) w += b[kMidpointParts[q][k]];
+      shape.coarse[q] = 1 + (w / 3 - mean) / m;
+      shape.max_weight = std::max(shape.max_weight, std::abs(shape.coarse[q]));
+    }
   shape.on = true;
   return shape;
 }

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace dynrad::rad {
 namespace {
@@ -208,6 +209,28 @@ TEST(AngleBetween, MatchesAtan2) {
 }
 
 
+// Points all around a triangle in the plane z = 0 (spanning about [0, 2] x [0, 1.7]),
+// with tilted normals: in front of it, beside it (parts of it below the point's
+// horizon), close to it and far; `clipped` counts those that see part of it behind.
+struct ProbePoint {
+  Vec3d x, n;
+};
+std::vector<ProbePoint> points_around_triangle(const Vec3d* c, int& clipped) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<ProbePoint> out;
+  clipped = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3d x(u(rng) * 3, u(rng) * 3, 0.05 + (u(rng) + 1) * (trial % 2 ? 0.3 : 3));
+    const Vec3d n = Vec3d(u(rng), u(rng), u(rng) - 0.2).normalized();
+    bool clips = false;
+    for (int k = 0; k < 3; ++k) clips = clips || OpenMesh::dot(c[k] - x, n) < 0;
+    clipped += clips;
+    out.push_back({x, n});
+  }
+  return out;
+}
+
 // The quartered triangle's shared-edge sum against the four parts' own closed forms,
 // for points all around a triangle: in front, beside it (its parts clipped at the
 // point's horizon), tilted, close to it and far, with weights above and below 1.
@@ -217,15 +240,9 @@ TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
   const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
   const Vec3d parts[4][3] = {{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}};
   const double weights[3][4] = {{1, 1, 1, 1}, {1.6, 0.7, 0.9, 0.8}, {-0.2, 2.5, 0.4, 1.3}};
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-1, 1);
-  int unclipped = 0, clipped = 0;
-  for (int trial = 0; trial < 2000; ++trial) {
-    const Vec3d x(u(rng) * 3, u(rng) * 3, 0.05 + (u(rng) + 1) * (trial % 2 ? 0.3 : 3));
-    const Vec3d n = Vec3d(u(rng), u(rng), u(rng) - 0.2).normalized();
-    bool clips = false;
-    for (const Vec3d& p : c) clips = clips || OpenMesh::dot(p - x, n) < 0;
-    (clips ? clipped : unclipped) += 1;
+  int clipped = 0;
+  const std::vector<ProbePoint> points = points_around_triangle(c, clipped);
+  for (const auto& [x, n] : points) {
     for (const auto& w : weights) {
       double expected = 0;
       for (int s = 0; s < 4; ++s) expected += w[s] * point_to_polygon(x, n, parts[s], 3, front);
@@ -233,7 +250,7 @@ TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
           << "x " << x << " n " << n;
     }
   }
-  EXPECT_GT(unclipped, 300);  // both paths were taken
+  EXPECT_GT(static_cast<int>(points.size()) - clipped, 300);  // both paths were taken
   EXPECT_GT(clipped, 300);
   // Behind the triangle: nothing.
   EXPECT_EQ(point_to_quartered_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1], front), 0.0);
@@ -244,12 +261,14 @@ TEST(FormFactor, QuarteredTriangleIsTheWeightedSumOfItsParts) {
 // 01 and 20, and so on).
 TEST(FormFactor, GridTablesNameTheNodesTheySay) {
   const Vec3d c[3] = {Vec3d(0, 0, 0), Vec3d(2, 0.3, 0), Vec3d(0.4, 1.7, 0.2)};
+  Vec3d node[kTriangleNodes];
+  triangle_nodes(c, node);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(node[kGridCorners[k]], c[k]);
+  // the parts are made of the nodes
   Vec3d parts[kTriangleParts][3];
   triangle_parts(c, parts);
-  Vec3d node[kTriangleNodes];
-  const auto& nodes = triangle_part_nodes();
   for (int s = 0; s < kTriangleParts; ++s)
-    for (int k = 0; k < 3; ++k) node[nodes[s][k]] = parts[s][k];
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(parts[s][k], node[triangle_part_nodes()[s][k]]);
   for (const auto& h : kGridHalfway) EXPECT_LT((node[h[0]] - (node[h[1]] + node[h[2]]) * 0.5).norm(), 1e-12);
   const Vec3d m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
   const Vec3d quarter[4][3] = {{c[0], m01, m20}, {m01, c[1], m12}, {m20, m12, c[2]}, {m01, m12, m20}};
@@ -278,7 +297,7 @@ TEST(FormFactor, PartedTriangleIsTheWeightedSumOfItsParts) {
     EXPECT_NEAR(0.5 * twice.norm(), area / kTriangleParts, 1e-12);
     EXPECT_GT(OpenMesh::dot(twice, front), 0);
   }
-  std::mt19937 rng(7);
+  std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   std::array<std::array<double, kTriangleParts>, 3> weights;
   for (int s = 0; s < kTriangleParts; ++s) {
@@ -286,13 +305,9 @@ TEST(FormFactor, PartedTriangleIsTheWeightedSumOfItsParts) {
     weights[1][s] = 1 + 0.5 * u(rng);
     weights[2][s] = 1 + 1.5 * u(rng);  // some below 0
   }
-  int unclipped = 0, clipped = 0;
-  for (int trial = 0; trial < 2000; ++trial) {
-    const Vec3d x(u(rng) * 3, u(rng) * 3, 0.05 + (u(rng) + 1) * (trial % 2 ? 0.3 : 3));
-    const Vec3d n = Vec3d(u(rng), u(rng), u(rng) - 0.2).normalized();
-    bool clips = false;
-    for (const Vec3d& p : c) clips = clips || OpenMesh::dot(p - x, n) < 0;
-    (clips ? clipped : unclipped) += 1;
+  int clipped = 0;
+  const std::vector<ProbePoint> points = points_around_triangle(c, clipped);
+  for (const auto& [x, n] : points) {
     for (const auto& w : weights) {
       double expected = 0;
       for (int s = 0; s < kTriangleParts; ++s) expected += w[s] * point_to_polygon(x, n, parts[s], 3, front);
@@ -303,7 +318,7 @@ TEST(FormFactor, PartedTriangleIsTheWeightedSumOfItsParts) {
     EXPECT_NEAR(point_to_parted_triangle(x, n, c, weights[0].data(), front), point_to_polygon(x, n, c, 3, front),
                 1e-12);
   }
-  EXPECT_GT(unclipped, 300);  // both paths were taken
+  EXPECT_GT(static_cast<int>(points.size()) - clipped, 300);  // both paths were taken
   EXPECT_GT(clipped, 300);
   // Behind the triangle: nothing.
   EXPECT_EQ(point_to_parted_triangle(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), c, weights[1].data(), front), 0.0);

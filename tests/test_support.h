@@ -34,13 +34,11 @@ CommandResult run_dynrad(const std::string& arguments);
 // Runs any shell command line.
 CommandResult run_shell(const std::string& command);
 // Starts `dynrad ARGUMENTS` (a solve) in the background, waits until its log holds
-// `ready` (by default: it has loaded the model and started solving), lets it solve for
-// `seconds`, sends `signal_name` (INT, TERM, KILL) and waits for it. The output ends
-// with "exit=N". Waiting for the log rather than a fixed time keeps this right on slow
+// `ready` (by default the line that counts the patches: it has loaded the model and
+// started solving), lets it solve for `seconds`, sends `signal_name` (INT, TERM, KILL)
+// and waits for it. The output ends with "exit=N". Waiting for the log rather than a fixed time keeps this right on slow
 // (sanitizer) builds: a SIGINT that arrives while a background process still ignores
 // it would be lost.
-// `ready` is the text the log must hold first (default: the line that counts the
-// patches, printed once the model is loaded).
 CommandResult run_dynrad_and_signal(const std::string& arguments, double seconds, const std::string& signal_name,
                                     const std::string& ready = " patches");
 
