@@ -23,6 +23,22 @@ std::array<VertexHandle, 3> corners_of(const TriMesh& mesh, FaceHandle f) {
   return c;
 }
 
+// See Element::in_strip. `width` is the line widths' property (or invalid: no lines).
+bool in_strip(const TriMesh& mesh, FaceHandle f, OpenMesh::EPropHandleT<float> width) {
+  if (!width.is_valid()) return false;
+  float strip = 0;
+  for (auto v : mesh.fv_range(f)) {
+    float widest = 0;
+    for (auto e : mesh.ve_range(v)) widest = std::max(widest, mesh.property(width, e));
+    if (!(widest > 0)) return false;
+    strip = std::max(strip, widest);
+  }
+  double longest = 0;
+  for (auto e : mesh.fe_range(f)) longest = std::max(longest, mesh.calc_edge_length(e));
+  const double thickness = 2 * triangle_area(mesh, f) / longest;  // the smallest altitude
+  return thickness <= 1.01 * strip;
+}
+
 }  // namespace
 
 // Longest-edge bisection with LEPP closure on a triangle mesh. `on_bisect(kept, added)`
@@ -33,7 +49,9 @@ class Bisector {
   using OnBisect = std::function<void(FaceHandle kept, FaceHandle added)>;
 
   Bisector(TriMesh& mesh, double min_area, OnBisect on_bisect)
-      : mesh_(mesh), min_area_(min_area), on_bisect_(std::move(on_bisect)) {}
+      : mesh_(mesh), min_area_(min_area), on_bisect_(std::move(on_bisect)) {
+    has_line_widths_ = mesh_.get_property_handle(line_width_, SceneMesh::kLineWidthProperty);
+  }
 
   // The longest edge, ties broken by vertex indices so that the choice is a strict
   // total order (LEPP terminates, and results do not depend on traversal order).
@@ -102,7 +120,17 @@ class Bisector {
     }
     const Vec3d midpoint = (mesh_.point(mesh_.from_vertex_handle(h0)) + mesh_.point(mesh_.to_vertex_handle(h0))) * 0.5;
     const VertexHandle m = mesh_.add_vertex(midpoint);
+    const float width = has_line_widths_ ? mesh_.property(line_width_, e) : 0.0f;
+    const VertexHandle end_a = mesh_.from_vertex_handle(h0), end_b = mesh_.to_vertex_handle(h0);
     mesh_.split_copy(e, m);  // face properties (material, patch, ...) go to the new halves
+    // An inserted line goes on along both halves of its edge, not across to the
+    // opposite corners (split_copy gave every new edge the old edge's properties).
+    if (has_line_widths_) {
+      for (auto h : mesh_.voh_range(m)) {
+        const VertexHandle to = mesh_.to_vertex_handle(h);
+        mesh_.property(line_width_, mesh_.edge_handle(h)) = (to == end_a || to == end_b) ? width : 0.0f;
+      }
+    }
     for (const Side& side : sides) {
       if (!side.face.is_valid()) continue;
       // The old handle now holds one half; the other half lies across the new edge
@@ -121,6 +149,8 @@ class Bisector {
   TriMesh& mesh_;
   double min_area_;
   OnBisect on_bisect_;
+  OpenMesh::EPropHandleT<float> line_width_;
+  bool has_line_widths_ = false;
   std::vector<FaceHandle> stack_;
 };
 
@@ -171,6 +201,7 @@ ElementHierarchy::ElementHierarchy(SceneMesh& scene, RefinementOptions options)
     : scene_(scene), options_(options) {
   TriMesh& mesh = scene_.mesh();
   mesh.add_property(element_of_face_, "dynrad:element");
+  if (scene_.has_lines()) mesh.get_property_handle(line_width_, SceneMesh::kLineWidthProperty);
   elements_.reserve(mesh.n_faces() * 2);
   roots_.reserve(mesh.n_faces());
   normals_.reserve(mesh.n_faces());
@@ -180,6 +211,7 @@ ElementHierarchy::ElementHierarchy(SceneMesh& scene, RefinementOptions options)
     e.face = f;
     e.corners = corners_of(mesh, f);
     e.area = scene_.area(f);
+    e.in_strip = in_strip(mesh, f, line_width_);
     const auto id = static_cast<ElementId>(elements_.size());
     elements_.push_back(e);
     roots_.push_back(id);
@@ -202,6 +234,7 @@ void ElementHierarchy::on_bisect(FaceHandle kept, FaceHandle added, const std::a
     child.face = k == 0 ? kept : added;
     child.corners = k == 0 ? corners_kept : corners_added;
     child.area = scene_.area(child.face);
+    child.in_strip = in_strip(mesh, child.face, line_width_);
     elements_.push_back(child);
     mesh.property(element_of_face_, child.face) = first + k;
   }

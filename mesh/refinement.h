@@ -37,6 +37,10 @@ struct Element {
   std::array<ElementId, 2> children{kNoElement, kNoElement};
   std::uint32_t patch = 0;       // the patch (root) this element descends from
   std::uint16_t generation = 0;  // bisections below the patch; 0 for a patch
+  // Inside the strip between two inserted lines (line_insertion.h: a jump in shading
+  // made into edges): every corner is on a line and the element is no thicker than the
+  // strip. Refining it would not resolve anything the lines do not already.
+  bool in_strip = false;
   FaceHandle face;               // the mesh face while this element is a leaf
   std::array<VertexHandle, 3> corners;
   double area = 0;
@@ -142,6 +146,7 @@ class ElementHierarchy {
   std::vector<ElementId> roots_;
   std::vector<Vec3d> normals_;  // per patch
   OpenMesh::FPropHandleT<ElementId> element_of_face_;
+  OpenMesh::EPropHandleT<float> line_width_;  // valid when the scene has inserted lines
 };
 
 }  // namespace dynrad

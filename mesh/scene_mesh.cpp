@@ -10,6 +10,7 @@ SceneMesh::SceneMesh(const TriangleSoup& soup)
   mesh_.add_property(patch_, "dynrad:patch");
   mesh_.add_property(group_, "dynrad:group");
   mesh_.add_property(origin_, "dynrad:origin");
+  mesh_.add_property(line_width_, kLineWidthProperty);
   mesh_.reserve(soup.points.size(), soup.triangles.size() * 3 / 2, soup.triangles.size());
   std::vector<VertexHandle> vertices;
   vertices.reserve(soup.points.size());
@@ -26,6 +27,7 @@ SceneMesh::SceneMesh(const TriangleSoup& soup)
     mesh_.property(patch_, f) = static_cast<std::uint32_t>(f.idx());
   }
   mesh_.update_face_normals();
+  for (auto e : mesh_.edges()) mesh_.property(line_width_, e) = 0;
 }
 
 std::string SceneMesh::where(FaceHandle f) const {

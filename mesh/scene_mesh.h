@@ -42,6 +42,17 @@ class SceneMesh {
   void set_patch(FaceHandle f, std::uint32_t id) { mesh_.property(patch_, f) = id; }
   std::uint32_t group(FaceHandle f) const { return mesh_.property(group_, f); }
   const SourceRef& origin(FaceHandle f) const { return mesh_.property(origin_, f); }
+
+  // Inserted lines (line_insertion.h): an edge on one carries the width of the strip
+  // its line bounds (model units); 0 on every other edge. Refinement keeps it on both
+  // halves of a split edge. Stored as the mesh property kLineWidthProperty.
+  static constexpr const char* kLineWidthProperty = "dynrad:line_width";
+  float line_width(OpenMesh::EdgeHandle e) const { return mesh_.property(line_width_, e); }
+  void set_line_width(OpenMesh::EdgeHandle e, float width) {
+    mesh_.property(line_width_, e) = width;
+    if (width > 0) has_lines_ = true;
+  }
+  bool has_lines() const { return has_lines_; }
   // "room.obj:17" / "room.ply face 3": where the user finds this face's polygon.
   std::string where(FaceHandle f) const;
 
@@ -65,6 +76,8 @@ class SceneMesh {
   TriMesh mesh_;
   OpenMesh::FPropHandleT<std::uint32_t> material_, patch_, group_;
   OpenMesh::FPropHandleT<SourceRef> origin_;
+  OpenMesh::EPropHandleT<float> line_width_;
+  bool has_lines_ = false;
   std::vector<Material> materials_;
   std::vector<std::string> group_names_;
   std::vector<std::string> files_;

@@ -219,7 +219,8 @@ bool Solver::shoot_once() {
         // No element gets smaller than the smallest a patch of the full patch size may
         // reach (RefineSettings::patch_area): slivers and small parts are fine already.
         const int generations = element_generation + (deeper ? 2 * refine_.shadow_levels : 0);
-        const bool can_split = !patch.clustered && el.generation < generations &&
+        // (nor inside the strip along a shadow's outline: its lines are the edge already)
+        const bool can_split = !patch.clustered && !el.in_strip && el.generation < generations &&
                                el.area >= std::ldexp(patch_area_, 1 - generations);
         const bool odd = el.generation % 2 == 1;
         // The push-down error costs three closed forms; it is estimated only where the

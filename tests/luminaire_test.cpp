@@ -6,6 +6,7 @@
 #include "radiosity/luminaire.h"
 #include "radiosity/probe.h"
 #include "radiosity/settings.h"
+#include "radiosity/shadow_outlines.h"
 #include "radiosity/solver.h"
 #include "scene_builder.h"
 #include "test_support.h"
@@ -33,6 +34,7 @@ struct Lit {
   std::unique_ptr<rad::Solver> solver;
   rad::Solver::Output output;
   rad::SolveReport report;
+  rad::ShadowOutlineReport outlines;
 
   // Illuminance (lx) at a point of a surface facing `normal`.
   double illuminance(const Vec3d& p, const Vec3d& normal) const {
@@ -43,9 +45,10 @@ struct Lit {
 };
 
 // As `dynrad solve` does for a scene with luminaires: the chosen settings, photometric
-// units. `tweak` may change the solve options after the settings are applied.
+// units. `tweak` may change the solve options after the settings are applied;
+// `outlines`: as `--shadow-outlines`.
 Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
-          const std::function<void(rad::SolveOptions&)>& tweak = {}) {
+          const std::function<void(rad::SolveOptions&)>& tweak = {}, bool outlines = false) {
   Lit lit;
   lit.scene = load_soup(b.soup(), "luminaire test");
   SceneMesh& mesh = *lit.scene.mesh;
@@ -57,6 +60,8 @@ Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
   options.min_reflectance = 1e-4;
   const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
   if (tweak) tweak(options);
+  if (outlines)
+    lit.outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(applied.patch_size));
   make_patches(mesh, applied.patch_size);
   lit.hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(applied.patch_size));
   lit.solver = std::make_unique<rad::Solver>(mesh, *lit.hierarchy, options, refine, std::move(luminaires));
@@ -200,6 +205,51 @@ TEST(Luminaire, PlateCastsAnUmbraWithNoDirectLight) {
     }
   EXPECT_GT(umbra, 20);
   EXPECT_GT(lit_points, 500);
+}
+
+// Discontinuity meshing (radiosity/shadow_outlines.h): a square plate 0.5 m above the
+// floor, under a point source 2 m up and off its centre. The shadow's outline is the
+// plate's top outline projected from the source. Across each of its four sides, the
+// lit mesh's illuminance falls through half the closed form within 1 mm of the
+// geometric outline, and 1 cm inside there is no direct light.
+TEST(Luminaire, PlateShadowOutlineIsSharpAndWhereGeometrySaysIt) {
+  SceneBuilder b;
+  const std::uint32_t grey = b.material("grey", 0.5);
+  b.rectangle(-3, -3, 3, 3, 0, +1, grey);
+  b.box({-0.5, -0.5, 0.5}, {0.5, 0.5, 0.52}, grey);
+  const Vec3d source{0.1, 0.05, 2};
+  const Lit lit = solve(b, {point_source(source, 100)}, [](rad::SolveOptions& o) {
+    o.max_iterations = 1;  // direct light only
+    o.ambient_display = false;
+  }, true);
+  EXPECT_GE(lit.outlines.outlines, 4u);
+  const double scale = source[2] / (source[2] - 0.52);  // the plate's top, projected
+  auto exact = [&](const Vec3d& p) { return 100 * source[2] / std::pow((p - source).sqrnorm(), 1.5); };
+  for (int side = 0; side < 4; ++side) {
+    const int axis = side % 2;               // x for sides 0 and 2, y for 1 and 3
+    const double sign = side < 2 ? 1 : -1;   // the + or the - side
+    const double edge = source[axis] + (sign * 0.5 - source[axis]) * scale;
+    for (const double along : {-0.4, 0.0, 0.35}) {
+      auto at = [&](double offset) {  // `offset` outwards from the outline, metres
+        Vec3d p(0, 0, 0);
+        p[axis] = edge + sign * offset;
+        p[1 - axis] = source[1 - axis] + along;
+        return p;
+      };
+      // 1 cm inside: no direct light (to rounding). (1 cm outside, the issue's 1% is
+      // not met yet: see the closing note of issue 27.)
+      const Vec3d out = at(0.01), in = at(-0.01);
+      EXPECT_LT(lit.illuminance(in, {0, 0, 1}), 1e-9 * exact(out)) << "side " << side << " along " << along;
+      // Where the illuminance passes half the closed form, in 0.25 mm steps.
+      double crossing = NAN;
+      for (double o = -0.005; o <= 0.005; o += 0.00025)
+        if (lit.illuminance(at(o), {0, 0, 1}) >= 0.5 * exact(at(o))) {
+          crossing = o;
+          break;
+        }
+      EXPECT_LE(std::abs(crossing), 0.001) << "side " << side << " along " << along;
+    }
+  }
 }
 
 // A spot: full intensity within its inner cone, none beyond the outer one.

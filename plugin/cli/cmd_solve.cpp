@@ -22,6 +22,7 @@
 #include "radiosity/views.h"
 #include "radiosity/visibility.h"
 #include "radiosity/settings.h"
+#include "radiosity/shadow_outlines.h"
 #include "radiosity/solver.h"
 #include "radiosity/tonemap.h"
 
@@ -63,6 +64,7 @@ struct SolveCliOptions {
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   bool clusters = true;
+  bool shadow_outlines = false;  // hard shadows' outlines as mesh edges (radiosity/shadow_outlines.h)
   double overshoot = -1;  // -1: the method's (radiosity/settings.h)
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
@@ -254,11 +256,20 @@ int run_solve(SolveCliOptions& options) {
   const rad::ChosenSettings& chosen = applied.chosen;
   const double patch_size = applied.patch_size;
   const std::string& patch_rule = applied.patch_size_rule;
+  rad::ShadowOutlineReport outlines;
+  if (options.shadow_outlines && !luminaires.empty()) {
+    outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(patch_size));
+    if (outlines.outlines > 0)
+      spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
+                   "{:.2f} s",
+                   outlines.outlines, outlines.silhouette_edges, outlines.lines, outlines.vertices_added,
+                   outlines.seconds);
+  }
   const PatchingReport patching = make_patches(mesh, patch_size);
   const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(mesh, refinement);
   spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", options.load.input, patching.faces_before,
-               patching.patches, patch_size, patch_rule,
+               hierarchy.patch_count(), patch_size, patch_rule,
                options.solve.error_target > 0
                    ? fmt::format("quality {}: stop at {:.2g}% estimated error", rad::quality_name(quality),
                                  100 * options.solve.error_target)
@@ -430,6 +441,14 @@ int run_solve(SolveCliOptions& options) {
     j["imprint"] = {{"enabled", cleanup.imprint},
                     {"imprinted_edges", scene.cleanup.imprinted_edges},
                     {"hidden_area", scene.cleanup.hidden_area}};
+    j["shadow_outlines"] = {{"enabled", options.shadow_outlines},
+                            {"senders", outlines.senders},
+                            {"silhouette_edges", outlines.silhouette_edges},
+                            {"outlines", outlines.outlines},
+                            {"lines", outlines.lines},
+                            {"vertices_added", outlines.vertices_added},
+                            {"flips", outlines.flips},
+                            {"seconds", outlines.seconds}};
     j["stopped_by"] = report.stopped_by;
     j["unshot_history"] = report.unshot_history;
     j["transfers_history"] = report.transfers_history;
@@ -585,6 +604,10 @@ Command add_solve_command(CLI::App& app) {
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
                    "corners and a quarter grid of points on it");
+  command->add_flag("--shadow-outlines", options->shadow_outlines,
+                    "Make the outlines of hard shadows (from luminaires small for their distance, and the sun) "
+                    "mesh edges before lighting, so that shadows have straight, sharp outlines (experimental: "
+                    "costs about 7-10% more time on the storey and the IFC house)");
   command->add_flag("!--no-clusters", options->clusters,
                     "Solve every small patch on its own instead of grouping small patches (frames, handles, "
                     "furniture parts) into face clusters that send and receive light as one");
