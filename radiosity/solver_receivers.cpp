@@ -237,7 +237,9 @@ void Solver::receiving_patches(std::uint32_t i, std::vector<ElementId>& roots) {
         return;
       }
       const double d = (receiver.centre - source_points[0]).norm() - receiver.radius - source_radius;
-      if (per_patch > 0 && d > 0) {
+      // (never a patch of a shadow outline's strip: tiny, but its corners are shared
+      // with the lit and the shaded elements either side, whose light they must carry)
+      if (per_patch > 0 && d > 0 && !hierarchy_.element(hierarchy_.patch_root(j)).in_strip) {
         const double bound = share_per_solid_angle * receiver.area / (d * d);
         if (bound < per_patch) {
           verdict[n] = bound;

@@ -256,6 +256,7 @@ int run_solve(SolveCliOptions& options) {
   const rad::ChosenSettings& chosen = applied.chosen;
   const double patch_size = applied.patch_size;
   const std::string& patch_rule = applied.patch_size_rule;
+  const PatchingReport patching = make_patches(mesh, patch_size);
   rad::ShadowOutlineReport outlines;
   if (options.shadow_outlines && !luminaires.empty()) {
     outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(patch_size));
@@ -265,7 +266,6 @@ int run_solve(SolveCliOptions& options) {
                    outlines.outlines, outlines.silhouette_edges, outlines.lines, outlines.vertices_added,
                    outlines.seconds);
   }
-  const PatchingReport patching = make_patches(mesh, patch_size);
   const RefinementOptions refinement = refinement_for_patch_size(patch_size);
   ElementHierarchy hierarchy(mesh, refinement);
   spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", options.load.input, patching.faces_before,
