@@ -1343,7 +1343,7 @@ Solver::Output Solver::output(bool ambient_display) {
   out.radiosity.assign(out.split.size(), Rgb());
   out.emitter.assign(out.split.size(), 0);
   out.irradiance.assign(out.split.size(), Rgb());
-  std::vector<int> count(out.split.size(), 0);
+  std::vector<double> weight(out.split.size(), 0.0);
   std::vector<double> surplus_at(out.split.size(), 0.0), unshot_at(out.split.size(), 0.0);
   const Rgb unshot_error = unshot_error_radiosity();
   auto arriving = [](const Rgb& b, const Patch& p) {
@@ -1364,20 +1364,20 @@ Solver::Output Solver::output(bool ambient_display) {
       const auto node = out.split.corner[3 * f.idx() + k++];
       for (int j = 0; j < 3; ++j)
         if (el.corners[j] == v) {
-          out.radiosity[node] += value_[e][j] + extra;
-          out.irradiance[node] += arriving(value_[e][j] + extra, patches_[el.patch]);
+          out.radiosity[node] += (value_[e][j] + extra) * el.area;
+          out.irradiance[node] += arriving(value_[e][j] + extra, patches_[el.patch]) * el.area;
         }
-      ++count[node];
+      weight[node] += el.area;
       out.emitter[node] = scene_.material(f).emits();
       surplus_at[node] = std::max(surplus_at[node], surplus_here);
       unshot_at[node] = std::max(unshot_at[node], unshot_here);
     }
   }
   out.error.assign(out.split.size(), 0.0f);
-  for (std::size_t i = 0; i < count.size(); ++i)
-    if (count[i] > 0) {
-      out.radiosity[i] = out.radiosity[i] * (1.0 / count[i]);
-      out.irradiance[i] = out.irradiance[i] * (1.0 / count[i]);
+  for (std::size_t i = 0; i < weight.size(); ++i)
+    if (weight[i] > 0) {
+      out.radiosity[i] = out.radiosity[i] * (1.0 / weight[i]);
+      out.irradiance[i] = out.irradiance[i] * (1.0 / weight[i]);
       const double b = out.radiosity[i].luminance();
       if (b > 0) out.error[i] = static_cast<float>((0.5 * surplus_at[i] + unshot_at[i]) / b);
     }

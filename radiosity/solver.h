@@ -144,7 +144,10 @@ class Solver {
   bool shoot_once();  // one shot from the brightest patch; false when nothing is left
 
   // Per output vertex (see mesh/vertex_split.h) of the current mesh: the mean of the
-  // leaf corner values that meet there.
+  // leaf corner values that meet there, weighted by the leaves' areas. (Unweighted, a
+  // sliver that a shot culled as a negligible receiver, and so holds less at a corner
+  // it shares with large lit elements, pulled the vertex down as much as they did: the
+  // 1990 room's largest error fell from 3.34% to 2.77% with the weights.)
   struct Output {
     VertexSplit split;
     std::vector<Rgb> radiosity;
