@@ -114,6 +114,10 @@ class LineWalk {
           end = b;
         else if (inward_distance(pa, pb, q) <= options_.snap)
           end = split_edge(mesh_.edge_handle(across), on_segment(pa, pb, q));
+        else if ((on_segment(pv, pa, q) - q).norm() <= options_.snap)  // (a sliver otherwise)
+          end = split_edge(mesh_.edge_handle(mesh_.find_halfedge(v, a)), on_segment(pv, pa, q));
+        else if ((on_segment(pv, pb, q) - q).norm() <= options_.snap)
+          end = split_edge(mesh_.edge_handle(mesh_.find_halfedge(v, b)), on_segment(pv, pb, q));
         else
           end = split_face(mesh_.face_handle(across), q);
         mark(v, end);
@@ -132,7 +136,7 @@ class LineWalk {
       else if ((x - pb).norm() <= options_.snap)
         next = b;
       else
-        next = split_edge(mesh_.edge_handle(across), x);
+        next = split_edge(mesh_.edge_handle(across), x, v);
       mark(v, next);
       v = next;
     }
@@ -172,7 +176,7 @@ class LineWalk {
 
   // Splits edge e at x (2 -> 4, or 1 -> 2 on a border). The faces keep their normals;
   // a line along e goes on along both halves.
-  VertexHandle split_edge(OpenMesh::EdgeHandle e, const Vec3d& x) {
+  VertexHandle split_edge(OpenMesh::EdgeHandle e, const Vec3d& x, VertexHandle walking_from = VertexHandle()) {
     struct Side {
       VertexHandle opposite;
       Vec3d normal;
@@ -187,8 +191,10 @@ class LineWalk {
     const VertexHandle end_b = mesh_.to_vertex_handle(mesh_.halfedge_handle(e, 0));
     // A corner of the faces beside e at x already (a line crossing another at one of
     // its vertices, or a flat corner): that corner, not a second vertex in its place.
+    // (Not the vertex the walk crosses e from: in a sliver it may lie within snap of e,
+    // and the line must get past it.)
     for (VertexHandle c : {end_a, end_b, sides[0].opposite, sides[1].opposite})
-      if (c.is_valid() && (mesh_.point(c) - x).norm() <= options_.snap) return c;
+      if (c.is_valid() && c != walking_from && (mesh_.point(c) - x).norm() <= options_.snap) return c;
     const float width = scene_.line_width(e);
     const VertexHandle m = mesh_.add_vertex(x);
     mesh_.split_copy(e, m);
