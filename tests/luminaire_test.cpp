@@ -46,9 +46,10 @@ struct Lit {
 
 // As `dynrad solve` does for a scene with luminaires: the chosen settings, photometric
 // units. `tweak` may change the solve options after the settings are applied;
-// `outlines`: as `--shadow-outlines`.
+// `outlines`: shadow outlines made edges, as `dynrad solve` does unless told
+// `--no-shadow-outlines`.
 Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
-          const std::function<void(rad::SolveOptions&)>& tweak = {}, bool outlines = false) {
+          const std::function<void(rad::SolveOptions&)>& tweak = {}, bool outlines = true) {
   Lit lit;
   lit.scene = load_soup(b.soup(), "luminaire test");
   SceneMesh& mesh = *lit.scene.mesh;
@@ -222,7 +223,7 @@ TEST(Luminaire, PlateShadowOutlineIsSharpAndWhereGeometrySaysIt) {
   const Lit lit = solve(b, {point_source(source, 100)}, [](rad::SolveOptions& o) {
     o.max_iterations = 1;  // direct light only
     o.ambient_display = false;
-  }, true);
+  });
   EXPECT_GE(lit.outlines.outlines, 4u);
   const double scale = source[2] / (source[2] - 0.52);  // the plate's top, projected
   auto exact = [&](const Vec3d& p) { return 100 * source[2] / std::pow((p - source).sqrnorm(), 1.5); };

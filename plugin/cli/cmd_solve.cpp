@@ -64,7 +64,7 @@ struct SolveCliOptions {
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   bool clusters = true;
-  bool shadow_outlines = false;  // hard shadows' outlines as mesh edges (radiosity/shadow_outlines.h)
+  bool shadow_outlines = true;  // hard shadows' outlines as mesh edges (radiosity/shadow_outlines.h)
   double overshoot = -1;  // -1: the method's (radiosity/settings.h)
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
@@ -604,10 +604,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
                    "corners and a quarter grid of points on it");
-  command->add_flag("--shadow-outlines", options->shadow_outlines,
-                    "Make the outlines of hard shadows (from luminaires small for their distance, and the sun) "
-                    "mesh edges before lighting, so that shadows have straight, sharp outlines (experimental: "
-                    "costs about 7-10% more time on the storey and the IFC house)");
+  command->add_flag("!--no-shadow-outlines", options->shadow_outlines,
+                    "Do not make the outlines of hard shadows (from luminaires small for their distance, and the "
+                    "sun) mesh edges before lighting; shadows then follow the elements' edges (a sawtooth)");
   command->add_flag("!--no-clusters", options->clusters,
                     "Solve every small patch on its own instead of grouping small patches (frames, handles, "
                     "furniture parts) into face clusters that send and receive light as one");
