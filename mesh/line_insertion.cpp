@@ -1,7 +1,8 @@
 #include "mesh/line_insertion.h"
 
+#include "mesh/refinement.h"
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -37,8 +38,7 @@ class LineWalk {
   // p, in face f, as a vertex: a corner within snap, a point on an edge within snap of
   // it, or a new vertex splitting f.
   VertexHandle insert_point(FaceHandle f, const Vec3d& p) {
-    const std::array<VertexHandle, 3> c = corners(f);
-    for (VertexHandle v : c)
+    for (VertexHandle v : mesh_.fv_range(f))
       if ((mesh_.point(v) - p).norm() <= options_.snap) return v;
     for (auto h : mesh_.fh_range(f)) {
       const Vec3d& a = mesh_.point(mesh_.from_vertex_handle(h));
@@ -160,13 +160,6 @@ class LineWalk {
     return a + e * t;
   }
 
-  std::array<VertexHandle, 3> corners(FaceHandle f) const {
-    std::array<VertexHandle, 3> c;
-    int k = 0;
-    for (auto v : mesh_.fv_range(f)) c[k++] = v;
-    return c;
-  }
-
   bool inside(FaceHandle f, const Vec3d& p, double slack) const {
     for (auto h : mesh_.fh_range(f))
       if (inward_distance(mesh_.point(mesh_.from_vertex_handle(h)), mesh_.point(mesh_.to_vertex_handle(h)), p) < -slack)
@@ -174,40 +167,22 @@ class LineWalk {
     return true;
   }
 
-  // Splits edge e at x (2 -> 4, or 1 -> 2 on a border). The faces keep their normals;
-  // a line along e goes on along both halves.
+  // Splits edge e at x (refinement.h's split_edge), unless a corner of the faces beside
+  // e is within snap of x already (a line crossing another at one of its vertices, or
+  // a flat corner): then that corner, not a second vertex in its place. (Not the vertex
+  // the walk crosses e from: in a sliver it may lie within snap of e, and the line must
+  // get past it.)
   VertexHandle split_edge(OpenMesh::EdgeHandle e, const Vec3d& x, VertexHandle walking_from = VertexHandle()) {
-    struct Side {
-      VertexHandle opposite;
-      Vec3d normal;
-    };
-    std::array<Side, 2> sides;
+    VertexHandle near[4];  // e's ends, then the opposite corners
     for (int s = 0; s < 2; ++s) {
       const OpenMesh::HalfedgeHandle h = mesh_.halfedge_handle(e, s);
-      if (mesh_.face_handle(h).is_valid())
-        sides[s] = {mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)), mesh_.normal(mesh_.face_handle(h))};
+      near[s] = mesh_.from_vertex_handle(h);
+      if (mesh_.face_handle(h).is_valid()) near[2 + s] = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
     }
-    const VertexHandle end_a = mesh_.from_vertex_handle(mesh_.halfedge_handle(e, 0));
-    const VertexHandle end_b = mesh_.to_vertex_handle(mesh_.halfedge_handle(e, 0));
-    // A corner of the faces beside e at x already (a line crossing another at one of
-    // its vertices, or a flat corner): that corner, not a second vertex in its place.
-    // (Not the vertex the walk crosses e from: in a sliver it may lie within snap of e,
-    // and the line must get past it.)
-    for (VertexHandle c : {end_a, end_b, sides[0].opposite, sides[1].opposite})
+    for (VertexHandle c : near)
       if (c.is_valid() && c != walking_from && (mesh_.point(c) - x).norm() <= options_.snap) return c;
-    const float width = scene_.line_width(e);
-    const VertexHandle m = mesh_.add_vertex(x);
-    mesh_.split_copy(e, m);
-    for (auto h : mesh_.voh_range(m)) {
-      const VertexHandle to = mesh_.to_vertex_handle(h);
-      scene_.set_line_width(mesh_.edge_handle(h), (to == end_a || to == end_b) ? width : 0.0f);
-    }
-    for (auto f : mesh_.vf_range(m))
-      for (auto c : mesh_.fv_range(f))
-        for (const Side& side : sides)
-          if (side.opposite.is_valid() && c == side.opposite) mesh_.set_normal(f, side.normal);
     ++result_.vertices_added;
-    return m;
+    return dynrad::split_edge(mesh_, e, x, scene_.line_width_property()).vertex;
   }
 
   // Splits face f at x (1 -> 3).

@@ -41,6 +41,45 @@ bool in_strip(const TriMesh& mesh, FaceHandle f, OpenMesh::EPropHandleT<float> w
 
 }  // namespace
 
+EdgeSplit split_edge(TriMesh& mesh, OpenMesh::EdgeHandle e, const Vec3d& x, OpenMesh::EPropHandleT<float> line_width) {
+  EdgeSplit cut;
+  std::array<VertexHandle, 2> opposite;
+  std::array<Vec3d, 2> normal;
+  for (int s = 0; s < 2; ++s) {
+    const OpenMesh::HalfedgeHandle h = mesh.halfedge_handle(e, s);
+    cut.kept[s] = mesh.face_handle(h);
+    if (cut.kept[s].is_valid()) {
+      opposite[s] = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+      normal[s] = mesh.normal(cut.kept[s]);
+    }
+  }
+  const VertexHandle end_a = mesh.from_vertex_handle(mesh.halfedge_handle(e, 0));
+  const VertexHandle end_b = mesh.to_vertex_handle(mesh.halfedge_handle(e, 0));
+  const float width = line_width.is_valid() ? mesh.property(line_width, e) : 0.0f;
+  const VertexHandle m = mesh.add_vertex(x);
+  mesh.split_copy(e, m);  // face properties (material, patch, ...) go to the new halves
+  cut.vertex = m;
+  // A line goes on along both halves of its edge, not across to the opposite corners
+  // (split_copy gave every new edge the old edge's properties).
+  if (line_width.is_valid())
+    for (auto h : mesh.voh_range(m)) {
+      const VertexHandle to = mesh.to_vertex_handle(h);
+      mesh.property(line_width, mesh.edge_handle(h)) = (to == end_a || to == end_b) ? width : 0.0f;
+    }
+  for (int s = 0; s < 2; ++s) {
+    if (!cut.kept[s].is_valid()) continue;
+    // The old handle now holds one half; the other lies across the new edge from x to
+    // the opposite corner.
+    for (auto h : mesh.fh_range(cut.kept[s])) {
+      const VertexHandle a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+      if ((a == m && b == opposite[s]) || (a == opposite[s] && b == m)) cut.added[s] = mesh.opposite_face_handle(h);
+    }
+    mesh.set_normal(cut.kept[s], normal[s]);
+    mesh.set_normal(cut.added[s], normal[s]);
+  }
+  return cut;
+}
+
 // Longest-edge bisection with LEPP closure on a triangle mesh. `on_bisect(kept, added)`
 // is told about every face cut in two: `kept` is the old handle (now one half),
 // `added` the new face holding the other half.
@@ -50,7 +89,7 @@ class Bisector {
 
   Bisector(TriMesh& mesh, double min_area, OnBisect on_bisect)
       : mesh_(mesh), min_area_(min_area), on_bisect_(std::move(on_bisect)) {
-    has_line_widths_ = mesh_.get_property_handle(line_width_, SceneMesh::kLineWidthProperty);
+    mesh_.get_property_handle(line_width_, SceneMesh::kLineWidthProperty);
   }
 
   // The longest edge, ties broken by vertex indices so that the choice is a strict
@@ -103,54 +142,18 @@ class Bisector {
 
  private:
   void split(OpenMesh::EdgeHandle e) {
-    const OpenMesh::HalfedgeHandle h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
-    struct Side {
-      FaceHandle face;
-      VertexHandle opposite;
-      Vec3d normal;
-    };
-    std::array<Side, 2> sides;
-    for (int s = 0; s < 2; ++s) {
-      const OpenMesh::HalfedgeHandle h = s == 0 ? h0 : h1;
-      sides[s].face = mesh_.face_handle(h);
-      if (sides[s].face.is_valid()) {
-        sides[s].opposite = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
-        sides[s].normal = mesh_.normal(sides[s].face);
-      }
-    }
-    const Vec3d midpoint = (mesh_.point(mesh_.from_vertex_handle(h0)) + mesh_.point(mesh_.to_vertex_handle(h0))) * 0.5;
-    const VertexHandle m = mesh_.add_vertex(midpoint);
-    const float width = has_line_widths_ ? mesh_.property(line_width_, e) : 0.0f;
-    const VertexHandle end_a = mesh_.from_vertex_handle(h0), end_b = mesh_.to_vertex_handle(h0);
-    mesh_.split_copy(e, m);  // face properties (material, patch, ...) go to the new halves
-    // An inserted line goes on along both halves of its edge, not across to the
-    // opposite corners (split_copy gave every new edge the old edge's properties).
-    if (has_line_widths_) {
-      for (auto h : mesh_.voh_range(m)) {
-        const VertexHandle to = mesh_.to_vertex_handle(h);
-        mesh_.property(line_width_, mesh_.edge_handle(h)) = (to == end_a || to == end_b) ? width : 0.0f;
-      }
-    }
-    for (const Side& side : sides) {
-      if (!side.face.is_valid()) continue;
-      // The old handle now holds one half; the other half lies across the new edge
-      // from the midpoint to the opposite corner.
-      FaceHandle added;
-      for (auto h : mesh_.fh_range(side.face)) {
-        const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-        if ((a == m && b == side.opposite) || (a == side.opposite && b == m)) added = mesh_.opposite_face_handle(h);
-      }
-      mesh_.set_normal(side.face, side.normal);
-      mesh_.set_normal(added, side.normal);
-      if (on_bisect_) on_bisect_(side.face, added);
-    }
+    const OpenMesh::HalfedgeHandle h = mesh_.halfedge_handle(e, 0);
+    const Vec3d midpoint = (mesh_.point(mesh_.from_vertex_handle(h)) + mesh_.point(mesh_.to_vertex_handle(h))) * 0.5;
+    const EdgeSplit cut = split_edge(mesh_, e, midpoint, line_width_);
+    if (on_bisect_)
+      for (int s = 0; s < 2; ++s)
+        if (cut.kept[s].is_valid()) on_bisect_(cut.kept[s], cut.added[s]);
   }
 
   TriMesh& mesh_;
   double min_area_;
   OnBisect on_bisect_;
-  OpenMesh::EPropHandleT<float> line_width_;
-  bool has_line_widths_ = false;
+  OpenMesh::EPropHandleT<float> line_width_;  // invalid when the mesh has no lines
   std::vector<FaceHandle> stack_;
 };
 

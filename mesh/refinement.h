@@ -81,6 +81,19 @@ inline RefinementOptions refinement_for_patch_size(double patch_size) {
   return options;
 }
 
+// The one edge split every change of the mesh makes (bisection here, inserted lines in
+// line_insertion.h): edge e is cut at x (2 -> 4, or 1 -> 2 on a border) by joining x to
+// the opposite corner of each face beside it. Each old face handle `kept[s]` holds one
+// half and `added[s]` the other (both invalid on a side with no face); both keep the
+// old face's normal and properties. A line on e (the SceneMesh::line_width property,
+// passed as `line_width`; an invalid handle when the mesh has none) goes on along both
+// halves, not across.
+struct EdgeSplit {
+  VertexHandle vertex;
+  std::array<FaceHandle, 2> kept, added;
+};
+EdgeSplit split_edge(TriMesh& mesh, OpenMesh::EdgeHandle e, const Vec3d& x, OpenMesh::EPropHandleT<float> line_width);
+
 // ---------------------------------------------------------------------------
 // Patches: the initial meshing, done once before lighting.
 

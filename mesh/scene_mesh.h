@@ -53,13 +53,8 @@ class SceneMesh {
     if (width > 0) has_lines_ = true;
   }
   bool has_lines() const { return has_lines_; }
-  // The vertex ends an edge of an inserted line.
-  bool on_line(VertexHandle v) const {
-    if (!has_lines_) return false;
-    for (auto e : mesh_.ve_range(v))
-      if (mesh_.property(line_width_, e) > 0) return true;
-    return false;
-  }
+  OpenMesh::EPropHandleT<float> line_width_property() const { return line_width_; }
+
   // "room.obj:17" / "room.ply face 3": where the user finds this face's polygon.
   std::string where(FaceHandle f) const;
 

@@ -109,7 +109,7 @@ class OutlineFinder {
       // The run i..j lands on one plane; its ends reach towards the samples beyond.
       const Vec3d first = i > 0 ? reach(s, a, b, at[i], static_cast<double>(i) / n, static_cast<double>(i - 1) / n)
                                 : at[i].point;
-      const Vec3d last = j < n ? reach(s, a, b, at[i], static_cast<double>(j) / n, static_cast<double>(j + 1) / n)
+      const Vec3d last = j < n ? reach(s, a, b, at[j], static_cast<double>(j) / n, static_cast<double>(j + 1) / n)
                                : at[j].point;
       const Landing& middle = at[(i + j) / 2];
       double half = 0;
@@ -120,15 +120,15 @@ class OutlineFinder {
   }
 
  private:
-  // The last point of the run holding `run` between edge parameters `inside` (on the
-  // run) and `outside` (off it), by bisection.
-  Vec3d reach(const Sender& s, const Vec3d& a, const Vec3d& b, const Landing& run, double inside,
+  // The last point of the run that `end` (its landing at edge parameter `inside`) ends,
+  // towards edge parameter `outside` (off the run), by bisection.
+  Vec3d reach(const Sender& s, const Vec3d& a, const Vec3d& b, const Landing& end, double inside,
               double outside) const {
-    Vec3d best = land(s, a + (b - a) * inside).point;
+    Vec3d best = end.point;
     for (int k = 0; k < options_.bisections; ++k) {
       const double mid = 0.5 * (inside + outside);
       const Landing l = land(s, a + (b - a) * mid);
-      if (same_plane(run, l)) {
+      if (same_plane(end, l)) {
         inside = mid;
         best = l.point;
       } else {

@@ -1160,17 +1160,7 @@ void Solver::restart_split_terminals(std::size_t first, std::vector<ElementId> t
       // from the source's corners (as at the push-down's midpoints: no rays, so no
       // vertex is left to two rays' say).
       const Vec3d point = receivers_[corner_receiver_[e][k]].point;
-      if (is_luminaire(sender_) && scene_.on_line(v)) {
-        // On an inserted line (a shadow's outline, shadow_outlines.h) the light jumps
-        // right beside the corner, so a fraction interpolated across the jump is wrong:
-        // the luminaire's own value, one ray.
-        double open = 0;
-        const double f = point_form_factor(v, point, hierarchy_.normal(e), sender_, &open, RayPlan{});
-        if (open > 0) held.seen[k] = f / open;
-        held.dB[k] = patch.reflectance * shot * f;
-      } else {
-        held.dB[k] = patch.reflectance * shot * (held.seen[k] * sender_closed_form(point, hierarchy_.normal(e)));
-      }
+      held.dB[k] = patch.reflectance * shot * (held.seen[k] * sender_closed_form(point, hierarchy_.normal(e)));
       value_[e][k] = value_[e][k] - line + held.dB[k];
     }
   });

@@ -239,7 +239,7 @@ class Solver {
     std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
     Vec3d centre;                   // centre and radius of a sphere around the patch
     double radius = 0;
-    // Luminance at the nodes of the patch's quarter grid (triangle_parts(); see
+    // Luminance at the nodes of the patch's quarter grid (triangle_nodes(); see
     // shape_of()) that has been shot: the values there minus this are the shape of its
     // unshot radiosity.
     std::array<double, kTriangleNodes> shot_at_nodes{};

@@ -45,11 +45,10 @@ struct Lit {
 };
 
 // As `dynrad solve` does for a scene with luminaires: the chosen settings, photometric
-// units. `tweak` may change the solve options after the settings are applied;
-// `outlines`: shadow outlines made edges, as `dynrad solve` does unless told
-// `--no-shadow-outlines`.
+// units, hard shadows' outlines made edges. `tweak` may change the solve options after
+// the settings are applied.
 Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
-          const std::function<void(rad::SolveOptions&)>& tweak = {}, bool outlines = true) {
+          const std::function<void(rad::SolveOptions&)>& tweak = {}) {
   Lit lit;
   lit.scene = load_soup(b.soup(), "luminaire test");
   SceneMesh& mesh = *lit.scene.mesh;
@@ -62,8 +61,7 @@ Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
   const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
   if (tweak) tweak(options);
   make_patches(mesh, applied.patch_size);
-  if (outlines)
-    lit.outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(applied.patch_size));
+  lit.outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(applied.patch_size));
   lit.hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(applied.patch_size));
   lit.solver = std::make_unique<rad::Solver>(mesh, *lit.hierarchy, options, refine, std::move(luminaires));
   lit.report = lit.solver->run();
