@@ -1057,6 +1057,8 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
     ElementId source = el.parent;
     while (source >= first) source = hierarchy_.element(source).parent;
     const auto& p = value_[source];
+    // (see below: whether the source lacks push-down its ancestors still hold)
+    const bool stale = refine_.near_field_start && refine_.method == Method::dynamic && pending_above(source);
     if (refine_.new_elements == RefineSettings::NewElements::constant) {
       const Rgb mean = (p[0] + p[1] + p[2]) * (1.0 / 3);
       value_[e] = {mean, mean, mean};
@@ -1068,11 +1070,38 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
         const Vec3d position = hierarchy_.position(v);
         value_[e][k] = interpolate(source, p, position);
         const bool new_vertex = v != src.corners[0] && v != src.corners[1] && v != src.corners[2];
-        if (new_vertex && refine_.near_field_start && refine_.method == Method::dynamic)
+        // The bend is taken against the line through the source's corners, which it
+        // takes to hold each nearby sender's light as F there. A source the walk did
+        // not pass (the neighbour that conforming bisection splits too) may still lack
+        // what its ancestors' push-down holds for it; that arrives later, interpolated
+        // from the ancestor, and a bend on top of it counts the bend twice: at the
+        // foot of the Cornell demo's short block one side of a new vertex started 40%
+        // above the other and kept the difference, a vertex 10% above its ring. Such a
+        // source bends only vertices on its plane's edge, where F jumps across the
+        // edge and the ancestor's push-down cannot have it (without the bend there, a
+        // furnace's edge vertex was 5% low).
+        if (new_vertex && refine_.near_field_start && refine_.method == Method::dynamic &&
+            (!stale || on_plane_edge(v, hierarchy_.normal(source))))
           value_[e][k] += near_field_start(e, source, position, value_[e][k].luminance(), scratch);
       }
     }
   });
+}
+
+bool Solver::pending_above(ElementId e) const {
+  for (ElementId a = hierarchy_.element(e).parent; a != kNoElement; a = hierarchy_.element(a).parent)
+    for (const Rgb& v : pending_[a])
+      if (!v.is_zero()) return true;
+  return false;
+}
+
+bool Solver::on_plane_edge(VertexHandle v, const Vec3d& normal) const {
+  const TriMesh& mesh = scene_.mesh();
+  for (auto h : mesh.voh_range(v))
+    if (mesh.is_boundary(h) || mesh.is_boundary(mesh.opposite_halfedge_handle(h))) return true;
+  for (auto f : mesh.vf_range(v))
+    if (OpenMesh::dot(mesh.normal(f), normal) <= 1 - 1e-9) return true;
+  return false;
 }
 
 Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& position, double line,

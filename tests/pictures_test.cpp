@@ -20,6 +20,9 @@ namespace {
 struct Outliers {
   std::size_t interior = 0;  // vertices inside flat single-material regions
   std::size_t beyond = 0;    // of those, outside their ring's range by more than 2% of their value
+  // of those, outside their ring's range by more than the ring spans (both relative to
+  // their value): more than the light's variation around them allows
+  std::size_t beyond_gradient = 0;
   double worst = 0;          // the largest such excess, relative to the value
   Vec3d where{0, 0, 0};      // the vertex that has it
   bool darker = false;       // below its ring (else above)
@@ -63,11 +66,13 @@ Outliers ring_outliers(const SceneMesh& scene, const VertexSplit& split, const s
       hi = std::max(hi, values[w].luminance());
     }
     const double excess = std::max({b - hi, lo - b, 0.0}) / std::max(b, 1e-300);
+    const double spread = (hi - lo) / std::max(b, 1e-300);
     if (excess > 0.02) ++out.beyond;
+    if (excess > 0.02 && excess > spread) ++out.beyond_gradient;
     if (excess > out.worst) {
       out.worst = excess;
       out.darker = b < lo;
-      out.spread = (hi - lo) / std::max(b, 1e-300);
+      out.spread = spread;
       const FaceHandle f = faces[v].front();
       auto fv = mesh.cfv_begin(f);
       for (int k = 0; k < 3; ++k, ++fv)
@@ -107,27 +112,33 @@ TEST(Pictures, TheDemoShowsNoStreaksAndAlmostNoBlotchesAtAnySeed) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const Outliers o = cornell_outliers(seed);
     ASSERT_GT(o.interior, 500u);
-    std::printf("seed %d: %zu of %zu interior vertices beyond their ring by more than 2%%; worst %.1f%% (%s, at %.1f %.1f %.1f; its ring spans %.1f%%)\n",
-                static_cast<int>(seed), o.beyond, o.interior, 100 * o.worst, o.darker ? "darker" : "brighter",
+    std::printf("seed %d: %zu of %zu interior vertices beyond their ring by more than 2%% (%zu by more than it spans); worst %.1f%% (%s, at %.1f %.1f %.1f; its ring spans %.1f%%)\n",
+                static_cast<int>(seed), o.beyond, o.interior, o.beyond_gradient, 100 * o.worst, o.darker ? "darker" : "brighter",
                 o.where[0], o.where[1], o.where[2], 100 * o.spread);
     EXPECT_LE(o.beyond, o.interior / 500) << "seed " << seed;
+    // A smooth light field sampled at vertices a similar distance apart leaves a vertex
+    // outside its ring's range by about the second difference over one element, well
+    // under what the ring itself spans where the light varies; a vertex further out
+    // than its ring spans is a blotch the light did not make.
+    EXPECT_EQ(o.beyond_gradient, 0u) << "seed " << seed;
     worst = std::max(worst, o.worst);
   }
-  // Measured (2026-12-04, gcc, seeds 1-5, area-weighted vertex means): 2.2-2.6% at seeds
-  // 1, 4 and 5, 9.9% and 8.2% at seeds 2 and 3; before the weights 2.6-2.9% (clang, all
-  // five) and 8.7-8.8% at gcc's seeds 2 and 3: a vertex 1 cm above the floor at the short block's foot,
-  // above a ring that spans 3-4%, not traced yet (issue 27). Vertices on the right wall
-  // 14 cm below the ceiling were 7-20% above their rings at every seed until a patch no
-  // longer sent light to a point facing its own way: a receiver the wall's patch shared
-  // with a coplanar neighbour, evaluated inside the sender, took F = 1.71 from it. The bound leaves a little room for the compilers'
-  // different meshes; it is not yet the gradient-scaled criterion issue 27 asks for.
+  // Measured (2026-12-04, gcc, seeds 1-5): 4.6, 1.6, 3.0, 2.6 and 2.5%, each under
+  // 0.55 of its ring's span. Before a new vertex's start took no near-field bend from
+  // a source its ancestors' push-down had not reached yet (Solver::initialise_values),
+  // seeds 2 and 3 gave 9.9% and 8.2% (1.2 and 1.1 times their rings' span): a vertex
+  // 1 cm up the short block's side, whose elements on one side of it had started 40%
+  // above those on the other. Vertices on the right wall 14 cm below the ceiling were
+  // 7-20% above their rings at every seed until a patch no longer sent light to a
+  // point facing its own way: a receiver the wall's patch shared with a coplanar
+  // neighbour, evaluated inside the sender, took F = 1.71 from it.
   // Before a new vertex's start took the light of the patches near it into account
   // (RefineSettings::near_field_start), vertices 1-2 cm above the floor at the short
   // block's foot were up to 20.5% darker than their rings at every seed: born between a
   // shot from the floor a little way off, which the foot sees only at grazing angles and
   // a corner 4 cm up sees well, and the shot from the floor at the foot, they started
   // from a line through those two corners and never got the difference back.
-  EXPECT_LT(worst, 0.12);
+  EXPECT_LT(worst, 0.06);
 }
 
 }  // namespace
