@@ -594,14 +594,14 @@ class Solver {
     indexed_[p] = 1;
     patch_index_.insert(p, {patches_[p].centre, patches_[p].radius});
   }
-  // What patches near a new corner at `position` (of new element e, split from
-  // `source`) would add to its start beyond the line across `source`
-  // (RefineSettings::near_field_start).
-  // `line`: the luminance the line across `source` gives there.
   // True when an ancestor of e holds push-down that has not reached e yet (flush()).
   bool pending_above(ElementId e) const;
   // True when v is on a border or has a face in another plane than `normal`'s.
   bool on_plane_edge(VertexHandle v, const Vec3d& normal) const;
+  // What patches near a new corner at `position` (of new element e, split from
+  // `source`) would add to its start beyond the line across `source`
+  // (RefineSettings::near_field_start).
+  // `line`: the luminance the line across `source` gives there.
   Rgb near_field_start(ElementId e, ElementId source, const Vec3d& position, double line,
                        std::vector<std::uint32_t>& scratch) const;
   GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
