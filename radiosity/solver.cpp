@@ -1057,8 +1057,9 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
     ElementId source = el.parent;
     while (source >= first) source = hierarchy_.element(source).parent;
     const auto& p = value_[source];
+    const bool bends = refine_.near_field_start && refine_.method == Method::dynamic;
     // (see below: whether the source lacks push-down its ancestors still hold)
-    const bool stale = refine_.near_field_start && refine_.method == Method::dynamic && pending_above(source);
+    const bool stale = bends && pending_above(source);
     if (refine_.new_elements == RefineSettings::NewElements::constant) {
       const Rgb mean = (p[0] + p[1] + p[2]) * (1.0 / 3);
       value_[e] = {mean, mean, mean};
@@ -1080,8 +1081,7 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
         // source bends only vertices on its plane's edge, where F jumps across the
         // edge and the ancestor's push-down cannot have it (without the bend there, a
         // furnace's edge vertex was 5% low).
-        if (new_vertex && refine_.near_field_start && refine_.method == Method::dynamic &&
-            (!stale || on_plane_edge(v, hierarchy_.normal(source))))
+        if (new_vertex && bends && (!stale || on_plane_edge(v, hierarchy_.normal(source))))
           value_[e][k] += near_field_start(e, source, position, value_[e][k].luminance(), scratch);
       }
     }
@@ -1097,8 +1097,7 @@ bool Solver::pending_above(ElementId e) const {
 
 bool Solver::on_plane_edge(VertexHandle v, const Vec3d& normal) const {
   const TriMesh& mesh = scene_.mesh();
-  for (auto h : mesh.voh_range(v))
-    if (mesh.is_boundary(h) || mesh.is_boundary(mesh.opposite_halfedge_handle(h))) return true;
+  if (mesh.is_boundary(v)) return true;
   for (auto f : mesh.vf_range(v))
     if (OpenMesh::dot(mesh.normal(f), normal) <= 1 - 1e-9) return true;
   return false;
