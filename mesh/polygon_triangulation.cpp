@@ -88,8 +88,16 @@ Vec3d newell_normal(const std::vector<Vec3d>& pts, const std::vector<std::uint32
   return n;  // length = twice the (projected) area
 }
 
-bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& loop, const Vec3d& normal,
+bool triangulate_polygon(const std::vector<Vec3d>& pts, const std::vector<std::uint32_t>& given, const Vec3d& normal,
                          std::vector<Triangle>& out) {
+  // A corner named twice in a row ("f 1 2 2 3", or the first corner again at the end)
+  // is one corner: CGAL cannot take a constraint from a vertex to itself.
+  std::vector<std::uint32_t> loop;
+  loop.reserve(given.size());
+  for (auto index : given)
+    if (loop.empty() || loop.back() != index) loop.push_back(index);
+  while (loop.size() > 1 && loop.back() == loop.front()) loop.pop_back();
+  if (loop.size() < 3) return false;
   const Frame frame(normal);
   LoopCdt cdt;
   std::vector<LoopCdt::Vertex_handle> handles;

@@ -16,8 +16,9 @@ using Segment = std::array<std::uint32_t, 2>;  // two point ids
 
 // Triangulates the simple polygon `loop` (ids into `points`) in the plane through its
 // corners with unit normal `normal`. Triangles are appended to `out`, counter-clockwise
-// about `normal`. Without Steiner points: an n-gon gives n - 2 triangles. Returns false,
-// appending nothing, when the loop intersects itself or two corners fall onto one point
+// about `normal`. A corner repeated one after the other counts once. Without Steiner
+// points: an n-gon gives n - 2 triangles. Returns false, appending nothing, when the
+// loop intersects itself, has fewer than 3 corners, or two corners fall onto one point
 // of the plane.
 bool triangulate_polygon(const std::vector<Vec3d>& points, const std::vector<std::uint32_t>& loop, const Vec3d& normal,
                          std::vector<Triangle>& out);

@@ -307,6 +307,19 @@ TEST(Daylight, BadSkiesAndGlassAreNamed) {
   EXPECT_NEAR(pane.glazing[0].transmittance.r, 0.4, 1e-6);
   EXPECT_NEAR(pane.glazing[0].transmittance.g, 0.8, 1e-6);
   EXPECT_EQ(pane.mesh->face_count(), 4u);  // two quads, the glass left out
+  // Found by fuzzing (2026-12-04): a glass face naming a corner twice in a row, or its
+  // first corner again at the end, stopped the triangulation on a failed CGAL
+  // precondition (a constraint from a vertex to itself). Each is one corner.
+  dir.write("repeat.obj", "mtllib pane.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+                          "v 0 1 1\nusemtl wall\nf 1 2 3 4\nf 1 2 6 5\nusemtl glass\nf 4 3 7 8 4\nf 5 6 6 7\n");
+  const LoadedScene repeat = load_scene(dir.path("repeat.obj"));
+  double glass_area = 0;
+  for (const auto& pane_triangle : repeat.glazing) {
+    const auto& c = pane_triangle.corners;
+    glass_area += 0.5 * OpenMesh::cross(c[1] - c[0], c[2] - c[0]).norm();
+  }
+  EXPECT_EQ(repeat.glazing.size(), 3u);  // the quad's two triangles and the triangle
+  EXPECT_NEAR(glass_area, 1.5, 1e-12);
   const std::string bad = dir.write(
       "bad.json", "{\"meshes\": [{\"file\": \"pane.obj\"}], \"materials\": {\"glass\": {\"transmittance\": 1.2}}}");
   try {
