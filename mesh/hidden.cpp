@@ -8,11 +8,13 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numeric>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 namespace dynrad {
 namespace {
@@ -252,20 +254,32 @@ class HiddenFinder {
     return Box(lo, hi, t);
   }
 
+  // A triangle's edges as lines in its plane: dot(p, inward[k]) - offset[k] is how far p
+  // lies inside edge k.
+  struct EdgeLines {
+    std::array<Vec3d, 3> inward;
+    std::array<double, 3> offset;
+  };
+  EdgeLines edge_lines(std::uint32_t u) const {
+    EdgeLines lines;
+    const Vec3d n = area_vector(u);
+    for (int k = 0; k < 3; ++k) {
+      lines.inward[k] = OpenMesh::cross(n, corner(u, (k + 1) % 3) - corner(u, k)).normalized();
+      lines.offset[k] = OpenMesh::dot(corner(u, k), lines.inward[k]);
+    }
+    return lines;
+  }
+
   // True when triangle t lies over triangle u (both in one plane): its centroid, or a
   // point halfway from it to one of t's corners, is inside u clear of u's edges by the
   // tolerance. (The centroid alone can lie on u's edge: a square's two triangulations.)
-  bool over(std::uint32_t t, std::uint32_t u) const {
-    const Vec3d c = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0;
-    const Vec3d n = area_vector(u);
+  bool over(std::uint32_t t, const EdgeLines& u) const {
     auto inside = [&](const Vec3d& p) {
-      for (int k = 0; k < 3; ++k) {
-        const Vec3d edge = corner(u, (k + 1) % 3) - corner(u, k);
-        const Vec3d inward = OpenMesh::cross(n, edge).normalized();
-        if (OpenMesh::dot(p - corner(u, k), inward) <= in_.tolerance) return false;
-      }
+      for (int k = 0; k < 3; ++k)
+        if (OpenMesh::dot(p, u.inward[k]) - u.offset[k] <= in_.tolerance) return false;
       return true;
     };
+    const Vec3d c = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0;
     if (inside(c)) return true;
     for (int k = 0; k < 3; ++k)
       if (inside((c + corner(t, k)) * 0.5)) return true;
@@ -276,11 +290,15 @@ class HiddenFinder {
   // imprinting cut along each other's outlines lies either inside the other facet or
   // outside it.
   void apply_plane_rules() {
-    std::vector<std::vector<std::uint32_t>> facet_triangles;
-    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) {
-      const std::uint32_t f = in_.facet_of[t];
-      if (f >= facet_triangles.size()) facet_triangles.resize(f + 1);
-      facet_triangles[f].push_back(t);
+    // The facet pairs that overlap, keyed (smaller facet, larger): bit 1 when they face
+    // apart, bit 2 when they face the same way (a pair may be listed with both).
+    std::unordered_map<std::uint64_t, unsigned> facings;
+    std::vector<char> in_overlap;
+    for (const auto& overlap : in_.overlaps) {
+      const std::uint32_t a = std::min(overlap.a, overlap.b), b = std::max(overlap.a, overlap.b);
+      facings[std::uint64_t(a) << 32 | b] |= overlap.same_facing ? 2u : 1u;
+      if (b >= in_overlap.size()) in_overlap.resize(b + 1, 0);
+      in_overlap[a] = in_overlap[b] = 1;
     }
     struct Pair {
       std::uint32_t t, u;  // triangles, one over the other
@@ -288,20 +306,31 @@ class HiddenFinder {
       bool same_facing;
     };
     std::vector<Pair> pairs;
-    std::vector<Box> a_boxes, b_boxes;
-    for (const auto& overlap : in_.overlaps) {
-      if (std::max(overlap.a, overlap.b) >= facet_triangles.size()) continue;
-      a_boxes.clear();
-      b_boxes.clear();
-      for (auto t : facet_triangles[overlap.a]) a_boxes.push_back(box_of(t));
-      for (auto u : facet_triangles[overlap.b]) b_boxes.push_back(box_of(u));
-      CGAL::box_intersection_d(a_boxes.begin(), a_boxes.end(), b_boxes.begin(), b_boxes.end(),
-                               [&](const Box& x, const Box& y) {
-                                 const std::uint32_t t = x.info(), u = y.info();
-                                 if (over(t, u) || over(u, t))
-                                   pairs.push_back({t, u, overlap.a, overlap.b, overlap.same_facing});
-                               });
+    // One box search over every triangle of an overlapping facet, not one per facet
+    // pair: that sorted a facet's boxes again for every facet over it, and a stack of n
+    // facets in one plane has n^2 pairs. 200 random triangles, 100 stacked on one
+    // plane, loaded in 25 s that way and in 14 s this way (2026-12-04).
+    std::vector<Box> boxes;
+    std::vector<EdgeLines> lines(in_.triangles.size());
+    for (std::uint32_t t = 0; t < in_.triangles.size(); ++t) {
+      const std::uint32_t f = in_.facet_of[t];
+      if (f >= in_overlap.size() || !in_overlap[f]) continue;
+      boxes.push_back(box_of(t));
+      lines[t] = edge_lines(t);
     }
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      std::uint32_t t = x.info(), u = y.info();
+      std::uint32_t ft = in_.facet_of[t], fu = in_.facet_of[u];
+      if (ft == fu) return;
+      if (ft > fu) {
+        std::swap(t, u);
+        std::swap(ft, fu);
+      }
+      const auto found = facings.find(std::uint64_t(ft) << 32 | fu);
+      if (found == facings.end() || !(over(t, lines[u]) || over(u, lines[t]))) return;
+      if (found->second & 1u) pairs.push_back({t, u, ft, fu, false});
+      if (found->second & 2u) pairs.push_back({t, u, ft, fu, true});
+    });
     std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {  // a fixed order
       return std::tie(x.t, x.u) < std::tie(y.t, y.u);
     });
