@@ -15,24 +15,38 @@
 
 namespace {
 
-dynrad::PolygonSoup make_grid_soup(int n) {
-  using dynrad::Vec3d;
+// A soup with one grey material, one group and one (generated) file, and no polygons.
+dynrad::PolygonSoup empty_soup(const char* group) {
   dynrad::PolygonSoup soup;
   soup.materials.push_back(dynrad::Material{"grey", dynrad::Rgb(0.5), dynrad::Rgb(0.0), "bench", true});
-  soup.group_names.push_back("grid");
+  soup.group_names.push_back(group);
   soup.files.push_back("generated");
+  return soup;
+}
+
+// Appends a polygon whose corners are new points.
+void add_polygon(dynrad::PolygonSoup& soup, const std::vector<dynrad::Vec3d>& corners) {
+  std::vector<std::uint32_t> polygon;
+  for (const dynrad::Vec3d& p : corners) {
+    polygon.push_back(static_cast<std::uint32_t>(soup.points.size()));
+    soup.points.push_back(p);
+  }
+  soup.polygons.push_back(polygon);
+  soup.material.push_back(0);
+  soup.group.push_back(0);
+  soup.origin.push_back(dynrad::SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+}
+
+dynrad::PolygonSoup make_grid_soup(int n) {
+  using dynrad::Vec3d;
+  dynrad::PolygonSoup soup = empty_soup("grid");
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-1e-7 * n, 1e-7 * n);
   auto add_quad = [&](double x0, double y0, double x1, double y1) {
-    std::vector<std::uint32_t> q;
-    for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}) {
-      soup.points.emplace_back(x + jitter(rng), y + jitter(rng), 0.0);
-      q.push_back(static_cast<std::uint32_t>(soup.points.size() - 1));
-    }
-    soup.polygons.push_back(q);
-    soup.material.push_back(0);
-    soup.group.push_back(0);
-    soup.origin.push_back(dynrad::SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+    std::vector<Vec3d> corners;
+    for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}})
+      corners.emplace_back(x + jitter(rng), y + jitter(rng), 0.0);
+    add_polygon(soup, corners);
   };
   for (int j = 0; j < n; ++j) {
     if (j % 2 == 0) {
@@ -69,26 +83,18 @@ BENCHMARK(BM_Cleanup)->Unit(benchmark::kMillisecond)->Repetitions(3)->ReportAggr
 // all triangles' boxes in one pass (2026-12-04).
 dynrad::PolygonSoup make_stacked_soup(int n) {
   using dynrad::Vec3d;
-  dynrad::PolygonSoup soup;
-  soup.materials.push_back(dynrad::Material{"grey", dynrad::Rgb(0.5), dynrad::Rgb(0.0), "bench", true});
-  soup.group_names.push_back("stack");
-  soup.files.push_back("generated");
+  dynrad::PolygonSoup soup = empty_soup("stack");
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> at(0, 10), step(-5, 5);
   for (int i = 0; i < n; ++i) {
-    const auto first = static_cast<std::uint32_t>(soup.points.size());
+    std::vector<Vec3d> corners;
     if (i % 2 == 0) {
-      for (int k = 0; k < 3; ++k) soup.points.emplace_back(at(rng), at(rng), 0.0);
+      for (int k = 0; k < 3; ++k) corners.emplace_back(at(rng), at(rng), 0.0);
     } else {
       const double x = at(rng), y = at(rng), dx = step(rng), dy = step(rng);
-      soup.points.emplace_back(x, y, -1.0);
-      soup.points.emplace_back(x + dx, y + dy, -1.0);
-      soup.points.emplace_back(x + dx / 2, y + dy / 2, 2.0);
+      corners = {Vec3d(x, y, -1.0), Vec3d(x + dx, y + dy, -1.0), Vec3d(x + dx / 2, y + dy / 2, 2.0)};
     }
-    soup.polygons.push_back({first, first + 1, first + 2});
-    soup.material.push_back(0);
-    soup.group.push_back(0);
-    soup.origin.push_back(dynrad::SourceRef{0, 0, static_cast<std::uint32_t>(soup.polygons.size() - 1)});
+    add_polygon(soup, corners);
   }
   return soup;
 }
