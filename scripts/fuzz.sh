@@ -83,7 +83,7 @@ export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp:print_suppressions=0
 # times slower than a release build, and a mutated room can legitimately make a large
 # mesh: 418 faces of the 1990 room, one corner moved to x = 255, imprint into 53,000
 # triangles, 1.1 s released and 15 s here (2026-12-04); 15 s was the limit before.
-timeout=60
+hang_seconds=60
 # With a fixed seed, the run must also be repeatable, and libFuzzer follows coverage:
 # with two CPUs and address randomisation, the seeds alone reached a different
 # coverage on every run (Embree's threads, and orders that depend on heap addresses),
@@ -110,7 +110,7 @@ for target in "${targets[@]}"; do
   esac
   [ ${#limit[@]} -eq 0 ] || echo "fuzz: $target, ${limit[0]#-runs=} inputs (at most ${seconds}s)"
   if ! "${pin[@]}" build-fuzz/tests/fuzz/fuzz_"$target" build-fuzz/corpus/"$target" "${dict[@]}" "${limit[@]}" \
-      -max_total_time="$seconds" -seed="$seed_value" -timeout="$timeout" -rss_limit_mb=2560 -max_len=16384 \
+      -max_total_time="$seconds" -seed="$seed_value" -timeout="$hang_seconds" -rss_limit_mb=2560 -max_len=16384 \
       -artifact_prefix="build-fuzz/artifacts/$target-" -print_final_stats=1 \
       > "build-fuzz/fuzz_$target.log" 2>&1; then
     failed+=("$target")
