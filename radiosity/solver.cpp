@@ -169,13 +169,19 @@ Solver::Survey Solver::survey_unit(std::size_t n, bool open) const {
   if (n < standalone) {
     const PlaneGroups::Group& g = groups_.groups[n];
     s.best = groups_.members[g.first];
+    double area = 0;
     for (std::uint32_t m = g.first; m < g.first + g.count; ++m) {
       const Patch& patch = patches_[groups_.members[m]];
       power += patch.unshot * patch.area;
       s.magnitude += magnitude(patch.unshot) * patch.area;
+      area += patch.area;
     }
     const Patch& leader = patches_[s.best];
     lost = leader.lost >= 0 ? leader.lost : leader.rough_lost;
+    // (SolveOptions::whole_patch_senders: a small sender is chosen as a whole patch)
+    s.best_power = s.magnitude;
+    if (options_.whole_patch_senders && !leader.detail && area > 0 && area < patch_area_)
+      s.best_power *= patch_area_ / area;
   } else {
     const std::uint32_t c = static_cast<std::uint32_t>(n - standalone);
     const auto& cl = clusters_.clusters[c];
@@ -185,10 +191,10 @@ Solver::Survey Solver::survey_unit(std::size_t n, bool open) const {
     }
     s.best = cluster_sender(c);
     lost = cluster_state_[c].lost >= 0 ? cluster_state_[c].lost : cluster_state_[c].rough_lost;
+    s.best_power = s.magnitude;
   }
   s.unshot = power;
   s.staying = power * (open && lost >= 0 ? 1 - lost : 1.0);
-  s.best_power = s.magnitude;
   return s;
 }
 
@@ -1371,6 +1377,16 @@ Solver::Output Solver::output(bool ambient_display) {
   };
   const TriMesh& mesh = scene_.mesh();
   const Rgb ambient_now = ambient_display ? ambient() : Rgb();
+  // Beside the ambient term, the unshot light of each vertex's near patches (near_unshot()).
+  std::vector<Rgb> near;
+  if (ambient_display && options_.near_unshot) {
+    std::vector<char> wanted(receivers_.size(), 0);
+    for (auto f : mesh.faces()) {
+      const ElementId e = hierarchy_.element_of(f);
+      for (int j = 0; j < 3; ++j) wanted[corner_receiver_[e][j]] = 1;
+    }
+    near = near_unshot(wanted);
+  }
   for (auto f : mesh.faces()) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
@@ -1382,8 +1398,10 @@ Solver::Output Solver::output(bool ambient_display) {
       const auto node = out.split.corner[3 * f.idx() + k++];
       for (int j = 0; j < 3; ++j)
         if (el.corners[j] == v) {
-          out.radiosity[node] += (value_[e][j] + extra) * el.area;
-          out.irradiance[node] += arriving(value_[e][j] + extra, patches_[el.patch]) * el.area;
+          const Rgb b = value_[e][j] + extra +
+                        (near.empty() ? Rgb() : patches_[el.patch].reflectance * near[corner_receiver_[e][j]]);
+          out.radiosity[node] += b * el.area;
+          out.irradiance[node] += arriving(b, patches_[el.patch]) * el.area;
         }
       weight[node] += el.area;
       out.emitter[node] = scene_.material(f).emits();

@@ -613,6 +613,10 @@ class Solver {
   // times the mean interreflection factor 1 / (1 - mean reflectance); in an open
   // scene, less the share the shots so far lost to the outside (see solver.cpp).
   Rgb ambient() const;
+  // Per receiver (where `wanted`): the first bounce of what the patches within one patch
+  // size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
+  // the reflectance, what the written value adds to the ambient term (near_unshot.cpp).
+  std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
     RayVerdict verdict = RayVerdict::none;  // how the visible part was decided
@@ -661,8 +665,9 @@ class Solver {
   // are the same for any number of threads; ties go to the lower unit.
   struct Survey {
     Rgb unshot, staying;  // power (x area), and the part of it that will not leave
-    double magnitude = 0, best_power = -1;
-    std::uint32_t best = 0;  // the sender id of the unit with the most |unshot| power
+    double magnitude = 0;
+    double best_power = -1;  // what the brightest is chosen by (SolveOptions::whole_patch_senders)
+    std::uint32_t best = 0;  // the sender id of the unit with the largest best_power
   };
   static Survey join(Survey left, const Survey& right);
   Survey survey_unit(std::size_t unit, bool open) const;
