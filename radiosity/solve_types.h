@@ -68,17 +68,17 @@ struct SolveOptions {
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
   // Choosing the brightest sender (its unshot power, Cohen et al. 1988), a patch of less
-  // area than a whole patch (RefineSettings::patch_area) counts as a whole patch, unless
-  // it is detail (Solver::Patch::detail). By power alone, a patch of half a whole
-  // patch's area (a sliver along a box's edge or an imprinted line) shoots only when its
-  // unshot radiosity is twice its neighbours': the small patches hold the most unshot
-  // radiosity when the solve stops, and a vertex beside them sees them most (an edge
-  // vertex takes half its light from the patches along the other side of the edge). The
-  // ambient term, one area-weighted mean, cannot give that back: a 1 x 1 x 3 furnace at
-  // the defaults kept an edge vertex 5.7% dark, 1.2% with this rule in as many shots
-  // (bench/README.md). Detail (frames, furniture parts) keeps power order: with it the
-  // IFC house took 25% more shots, without it 14% (4,338 to 4,925) for about the same
-  // time, since the added shots are small. False: power alone.
+  // area than a whole patch (RefineSettings::patch_area) counts as a whole patch, or as
+  // twice its own area if that is less, unless it is detail (Solver::Patch::detail).
+  // By power alone, a patch of half a whole patch's area (a sliver along a box's edge)
+  // shoots only when its unshot radiosity is twice its neighbours': the small patches
+  // hold the most unshot radiosity when the solve stops, and a vertex beside them sees
+  // them most (an edge vertex takes half its light from the patches along the other
+  // side of the edge). The ambient term, one area-weighted mean, cannot give that back:
+  // a 1 x 1 x 3 furnace at the defaults kept an edge vertex 5.7% dark, 1.2% with this
+  // rule in as many shots (bench/README.md). Without the cap at twice, the much smaller
+  // patches of imprinted lines shot far more often: the IFC house took 14% more shots
+  // (25% with detail counted too); with it, as many (4,338). False: power alone.
   bool whole_patch_senders = true;
   // Face clusters (mesh/face_clusters.h): patches whose facet (the patches that touch
   // in one plane) has less area than cluster_area and that emit nothing are grouped, within spheres of radius cluster_radius, into clusters

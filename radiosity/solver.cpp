@@ -178,10 +178,11 @@ Solver::Survey Solver::survey_unit(std::size_t n, bool open) const {
     }
     const Patch& leader = patches_[s.best];
     lost = leader.lost >= 0 ? leader.lost : leader.rough_lost;
-    // (SolveOptions::whole_patch_senders: a small sender is chosen as a whole patch)
+    // (SolveOptions::whole_patch_senders: a small sender is chosen as a whole patch, or
+    // as twice its size if that is less)
     s.best_power = s.magnitude;
     if (options_.whole_patch_senders && !leader.detail && area > 0 && area < patch_area_)
-      s.best_power *= patch_area_ / area;
+      s.best_power *= std::min(patch_area_ / area, 2.0);
   } else {
     const std::uint32_t c = static_cast<std::uint32_t>(n - standalone);
     const auto& cl = clusters_.clusters[c];
