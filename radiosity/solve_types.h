@@ -37,7 +37,7 @@ struct SolveOptions {
   // its energy balance; it makes an early stop (a time limit, Ctrl-C) look like the
   // converged picture rather than a darker one. It vanishes as the solve converges.
   bool ambient_display = false;
-  // With the ambient term: the patches within one patch size of a vertex are taken at
+  // With the ambient term: the patches within half a patch size of a vertex are taken at
   // the unshot radiosity each holds rather than the scene's mean (their first bounce;
   // see radiosity/near_unshot.cpp). At a concave edge the ambient term's mean is wrong:
   // there half the view is a few patches of the other surface.
@@ -76,7 +76,7 @@ struct SolveOptions {
   // them most (an edge vertex takes half its light from the patches along the other
   // side of the edge). The ambient term, one area-weighted mean, cannot give that back:
   // a 1 x 1 x 3 furnace at the defaults kept an edge vertex 5.7% dark, 1.2% with this
-  // rule in as many shots (bench/README.md). Without the cap at twice, the much smaller
+  // rule in as many shots, 0.8% with near_unshot too (bench/README.md). Without the cap at twice, the much smaller
   // patches of imprinted lines shot far more often: the IFC house took 14% more shots
   // (25% with detail counted too); with it, as many (4,338). False: power alone.
   bool whole_patch_senders = true;

@@ -613,8 +613,8 @@ class Solver {
   // times the mean interreflection factor 1 / (1 - mean reflectance); in an open
   // scene, less the share the shots so far lost to the outside (see solver.cpp).
   Rgb ambient() const;
-  // Per receiver (where `wanted`): the first bounce of what the patches within one patch
-  // size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
+  // Per receiver (where `wanted`): the first bounce of what the patches within half a
+  // patch size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
   // the reflectance, what the written value adds to the ambient term (near_unshot.cpp).
   std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
   struct CornerFormFactor {
