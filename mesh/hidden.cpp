@@ -322,11 +322,14 @@ class HiddenFinder {
       lines.push_back(edge_lines(t));
     }
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-      std::uint32_t a = x.info(), b = y.info();
-      if (in_.facet_of[triangle[a]] > in_.facet_of[triangle[b]]) std::swap(a, b);
-      const std::uint32_t t = triangle[a], u = triangle[b];
-      const std::uint32_t ft = in_.facet_of[t], fu = in_.facet_of[u];
+      std::uint32_t a = x.info(), b = y.info();  // slots, the lower facet's first
+      std::uint32_t ft = in_.facet_of[triangle[a]], fu = in_.facet_of[triangle[b]];
       if (ft == fu) return;
+      if (ft > fu) {
+        std::swap(a, b);
+        std::swap(ft, fu);
+      }
+      const std::uint32_t t = triangle[a], u = triangle[b];
       const auto found = facings.find(std::uint64_t(ft) << 32 | fu);
       if (found == facings.end() || !(over(t, lines[b]) || over(u, lines[a]))) return;
       if (found->second & 1u) pairs.push_back({t, u, ft, fu, false});

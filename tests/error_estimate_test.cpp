@@ -261,16 +261,68 @@ TEST(ErrorEstimate, EdgeVerticesOfAFurnaceKeepTheirShareOnceConvergedOrAtHighQua
 
 
 // The per-vertex estimate (Solver::Output::error) in a furnace that is not a cube, at
+// the defaults but with both edge rules off (SolveOptions::whole_patch_senders and
+// near_unshot), so that the early stop leaves its error on the edges, as a solve whose
+// ambient term is wrong somewhere does: its mean over the vertices is of the measured
+// mean's size, and the vertices it ranks worst hold the measured worst. (With the rules
+// on, the edges are as good as the faces: see the test after this one.)
+TEST(ErrorEstimate, PerVertexEstimateFindsTheFurnacesWorstVertices) {
+  test::TempDir dir;
+  const std::string model = write_furnace(dir, 1.5);
+  Solved s = solve_like_the_command_line(model, Quality::normal, {}, [](rad::SolveOptions& o) {
+    o.whole_patch_senders = false;
+    o.near_unshot = false;
+  });
+  const rad::Solver::Output out = s.solver->output();
+  const std::size_t n = out.radiosity.size();
+  ASSERT_EQ(out.error.size(), n);
+  std::vector<double> measured(n);
+  double measured_mean = 0, estimated_mean = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    measured[v] = std::abs(out.radiosity[v].g - 2.0) / 2.0;
+    measured_mean += measured[v] / static_cast<double>(n);
+    estimated_mean += out.error[v] / static_cast<double>(n);
+  }
+  // The estimate's rank of each of the ten worst measured vertices (0: ranked worst).
+  std::vector<std::size_t> by_estimate(n), by_measure(n);
+  for (std::size_t v = 0; v < n; ++v) by_estimate[v] = by_measure[v] = v;
+  std::sort(by_estimate.begin(), by_estimate.end(), [&](auto a, auto b) { return out.error[a] > out.error[b]; });
+  std::sort(by_measure.begin(), by_measure.end(), [&](auto a, auto b) { return measured[a] > measured[b]; });
+  std::vector<std::size_t> rank(n);
+  for (std::size_t r = 0; r < n; ++r) rank[by_estimate[r]] = r;
+  std::printf("measured mean %.3f%%, estimated mean %.3f%%; the worst measured (%.2f%%) is ranked %zu of %zu\n",
+              100 * measured_mean, 100 * estimated_mean, 100 * measured[by_measure[0]], rank[by_measure[0]], n);
+  for (int i = 0; i < 10; ++i)
+    std::printf("  measured %.3f%% estimated %.3f%% rank %zu\n", 100 * measured[by_measure[i]], 100 * out.error[by_measure[i]], rank[by_measure[i]]);
+  EXPECT_GE(estimated_mean, measured_mean);
+  EXPECT_LE(estimated_mean, 4 * measured_mean);
+  // Measured: 5 of the 10 worst rank in the estimate's top 10%; the very worst (2.9%,
+  // on an edge) 67th of 1382, and the estimate's top 1% holds a vertex at 2.8%. The
+  // worst ten lie within 6% of each other (2.7-2.9%), so which of them the estimate puts
+  // first is a toss-up; what a user needs is that the vertices it puts first are as bad
+  // as the worst. Before the edge fixes of the test above the worst ranked 430th: the
+  // vertex held a wrong share for good, which no surplus or unshot light shows. The
+  // estimate still says about half the error there (1.5% for 2.8%): the early stop's
+  // shortfall at an edge is larger than the uniform ambient's (issue 27, item 4: open).
+  int found = 0;
+  for (int i = 0; i < 10; ++i) found += rank[by_measure[i]] < n / 10;
+  EXPECT_GE(found, 5);
+  EXPECT_LT(rank[by_measure[0]], n / 10);
+  double worst_of_top = 0;  // the largest measured error among the estimate's top 1%
+  for (std::size_t r = 0; r < n / 100; ++r) worst_of_top = std::max(worst_of_top, measured[by_estimate[r]]);
+  EXPECT_GE(worst_of_top, 0.9 * measured[by_measure[0]]);
+}
+
+// The per-vertex estimate (Solver::Output::error) in a furnace that is not a cube, at
 // the defaults: no vertex is worse than its estimate says, and the mean of the
 // estimate is at least the measured mean.
 //
-// It used to be asked to rank the worst vertices first: they were edge vertices 2.9%
-// dark, where it said 1.5%. Since the unshot light of a vertex's near patches is
-// written as each holds it (radiosity/near_unshot.cpp), the edges are as good as the
-// faces (0.63% at worst, on a face) and every vertex's estimate is above its error, so
-// which it ranks first no longer matters. It is now too loose: 6.8 times the measured
-// mean (item 4 of issue 27 asks at most 2): its unshot part still counts a quarter of
-// the ambient term, which was measured before the near patches were taken apart.
+// With the edge rules on, the worst vertices are no longer the edges (2.9% dark before,
+// where the estimate said 1.5%; the test before this one ranks them with the rules
+// off): the worst is 0.63%, on a face, and every vertex's estimate is above its error.
+// It is now too loose: 6.8 times the measured mean (item 4 of issue 27 asks at most 2):
+// its unshot part still counts a quarter of the ambient term, which was measured before
+// the near patches were taken apart.
 TEST(ErrorEstimate, PerVertexEstimateBoundsEveryVertexOfAFurnace) {
   test::TempDir dir;
   const std::string model = write_furnace(dir, 1.5);
