@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace dynrad::rad {
@@ -13,6 +14,7 @@ double sum_of(const Rgb& c) { return c.r + c.g + c.b; }
 
 ErrorEstimate Solver::estimate_error() {
   flush_all();  // every leaf holds what was pushed down above it
+  update_direct_gaps();
   const Rgb ambient_now = ambient();
   const Rgb ambient_error = unshot_error_radiosity();
   struct Sums {
@@ -33,7 +35,7 @@ ErrorEstimate Solver::estimate_error() {
           const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
           s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
           s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance();
-          s.surplus_area += el.area * surplus(e);
+          s.surplus_area += el.area * mesh_error(e);
         }
         return s;
       },
@@ -46,7 +48,7 @@ ErrorEstimate Solver::estimate_error() {
   ErrorEstimate out;
   if (sums.radiosity_area > 0) {
     out.unshot = sums.unshot_area / sums.radiosity_area;
-    out.discretisation = 0.5 * sums.surplus_area / sums.radiosity_area;
+    out.discretisation = sums.surplus_area / sums.radiosity_area;
   }
   return out;
 }
@@ -63,6 +65,10 @@ Rgb Solver::unshot_error_radiosity() const {
     ambient_error = Rgb(std::abs(ambient_now.r), std::abs(ambient_now.g), std::abs(ambient_now.b)) * scale;
   }
   return ambient_error * unshot_weight;
+}
+
+double Solver::mesh_error(ElementId e) const {
+  return std::max(0.5 * surplus(e), kDirectGapWeight * direct_gap(e));
 }
 
 double Solver::surplus(ElementId e) const {

@@ -42,6 +42,11 @@ struct SolveOptions {
   // see radiosity/near_unshot.cpp). At a concave edge the ambient term's mean is wrong:
   // there half the view is a few patches of the other surface.
   bool near_unshot = true;
+  // Count in the estimate's mesh part what linear interpolation gets wrong of the
+  // primary sources' direct light at each leaf's centroid (radiosity/direct_gap.cpp): a
+  // shadow's edge inside an element, or a never-refined patch under a bright source,
+  // that the hierarchical surplus does not see. False: the surplus alone.
+  bool direct_check = true;
   // Over-relaxation of each shot (Gortler, Cohen & Slusallek 1993; Feda & Purgathofer
   // 1992 call it overshooting): the sender shoots `overshoot` times its unshot
   // radiosity and keeps the rest, 1 - overshoot of it, which is negative for values

@@ -1363,6 +1363,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
 
 Solver::Output Solver::output(bool ambient_display) {
   flush_all();
+  update_direct_gaps();
   Output out;
   out.split = split_vertices(scene_, options_.crease_angle);
   out.radiosity.assign(out.split.size(), Rgb());
@@ -1392,7 +1393,7 @@ Solver::Output Solver::output(bool ambient_display) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
     const Rgb extra = patches_[el.patch].reflectance * ambient_now;
-    const double surplus_here = surplus(e);
+    const double surplus_here = mesh_error(e);
     const double unshot_here = (patches_[el.patch].reflectance * unshot_error).luminance();
     int k = 0;
     for (auto v : mesh.fv_range(f)) {
@@ -1416,7 +1417,7 @@ Solver::Output Solver::output(bool ambient_display) {
       out.radiosity[i] = out.radiosity[i] * (1.0 / weight[i]);
       out.irradiance[i] = out.irradiance[i] * (1.0 / weight[i]);
       const double b = out.radiosity[i].luminance();
-      if (b > 0) out.error[i] = static_cast<float>((0.5 * surplus_at[i] + unshot_at[i]) / b);
+      if (b > 0) out.error[i] = static_cast<float>((surplus_at[i] + unshot_at[i]) / b);
     }
   return out;
 }
@@ -1445,15 +1446,19 @@ SolveReport Solver::run() {
       checked_unshot = unshot_fraction();
       checked_at = report_.iterations;
       report_.estimated_error = estimate_error();
-      if (report_.estimated_error.total() <= options_.error_target) {
-        report_.stopped_by = "error target";
-        break;
-      }
-      // Only the mesh's error is left above the target: shooting on would buy little.
       const ErrorEstimate& e = report_.estimated_error;
-      if (e.unshot <= 0.1 * options_.error_target || e.unshot <= 0.25 * e.discretisation) {
-        report_.stopped_by = "error floor";
-        break;
+      // Not before every primary source has shot: the light of one that has not is no
+      // ambient term but direct light that the surfaces under it lack altogether.
+      if (primary_sources_shot()) {
+        if (e.total() <= options_.error_target) {
+          report_.stopped_by = "error target";
+          break;
+        }
+        // Only the mesh's error is left above the target: shooting on would buy little.
+        if (e.unshot <= 0.1 * options_.error_target || e.unshot <= 0.25 * e.discretisation) {
+          report_.stopped_by = "error floor";
+          break;
+        }
       }
     }
     if (options_.max_iterations > 0 && report_.iterations >= options_.max_iterations) {
