@@ -18,7 +18,7 @@ ErrorEstimate Solver::estimate_error() {
   const Rgb ambient_now = ambient();
   const Rgb ambient_error = unshot_error_radiosity();
   struct Sums {
-    double radiosity_area = 0, unshot_area = 0, surplus_area = 0;
+    double radiosity_area = 0, unshot_area = 0, surplus_area = 0, shadow_area = 0;
   };
   // A deterministic reduction: the same blocks, joined in the same order, for any
   // number of threads.
@@ -35,7 +35,9 @@ ErrorEstimate Solver::estimate_error() {
           const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
           s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
           s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance();
-          s.surplus_area += el.area * mesh_error(e);
+          const double bend = 0.5 * surplus(e);
+          s.surplus_area += el.area * bend;
+          s.shadow_area += el.area * (mesh_error(e) - bend);
         }
         return s;
       },
@@ -43,12 +45,14 @@ ErrorEstimate Solver::estimate_error() {
         a.radiosity_area += b.radiosity_area;
         a.unshot_area += b.unshot_area;
         a.surplus_area += b.surplus_area;
+        a.shadow_area += b.shadow_area;
         return a;
       });
   ErrorEstimate out;
   if (sums.radiosity_area > 0) {
     out.unshot = sums.unshot_area / sums.radiosity_area;
     out.discretisation = sums.surplus_area / sums.radiosity_area;
+    out.shadows = sums.shadow_area / sums.radiosity_area;
   }
   return out;
 }

@@ -42,10 +42,10 @@ struct SolveOptions {
   // see radiosity/near_unshot.cpp). At a concave edge the ambient term's mean is wrong:
   // there half the view is a few patches of the other surface.
   bool near_unshot = true;
-  // Count in the estimate's mesh part what linear interpolation gets wrong of the
-  // primary sources' direct light at each leaf's centroid (radiosity/direct_gap.cpp): a
-  // shadow's edge inside an element, or a never-refined patch under a bright source,
-  // that the hierarchical surplus does not see. False: the surplus alone.
+  // Count in the estimate (ErrorEstimate::shadows, and the PLY's per-vertex `error`)
+  // what linear interpolation gets wrong of the primary sources' shadows at each leaf's
+  // centroid (radiosity/direct_gap.cpp): a shadow inside an element whose corners are
+  // lit, which the hierarchical surplus does not see. False: the surplus alone.
   bool direct_check = true;
   // Over-relaxation of each shot (Gortler, Cohen & Slusallek 1993; Feda & Purgathofer
   // 1992 call it overshooting): the sender shoots `overshoot` times its unshot
@@ -136,7 +136,14 @@ struct EnergyBalance {
 struct ErrorEstimate {
   double unshot = 0;          // light not yet shot (what the ambient term leaves)
   double discretisation = 0;  // the mesh: how much the values still bend at the finest elements
-  double total() const { return unshot + discretisation; }
+  // The mesh again, where a shadow's edge inside an element makes its linear
+  // interpolation wrong and the bending above does not show it (SolveOptions::direct_check).
+  double shadows = 0;
+  double total() const { return unshot + discretisation + shadows; }
+  // What the solve stops by (SolveOptions::error_target): shooting on changes neither
+  // the shadows' part (the mesh under a primary source is made by its first shot) nor,
+  // much, the surplus once the shots are small.
+  double stop_measure() const { return unshot + discretisation; }
 };
 
 struct SolveReport {

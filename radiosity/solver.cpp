@@ -1450,7 +1450,7 @@ SolveReport Solver::run() {
       // Not before every primary source has shot: the light of one that has not is no
       // ambient term but direct light that the surfaces under it lack altogether.
       if (primary_sources_shot()) {
-        if (e.total() <= options_.error_target) {
+        if (e.stop_measure() <= options_.error_target) {
           report_.stopped_by = "error target";
           break;
         }

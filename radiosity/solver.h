@@ -179,7 +179,11 @@ class Solver {
   //     goes with the element's area), so what is left at the leaf is about the
   //     surplus there, and the mean of a linear interpolation's error over an element
   //     is about half its value at an edge's midpoint (2/3 along a parabola). Leaves
-  //     that are whole patches add nothing: no refinement was asked for there.
+  //     that are whole patches have no surplus: no refinement was asked for there.
+  //   shadows: per leaf, what two thirds of its direct gap (direct_gap.cpp) adds above
+  //     that (mesh_error() takes the larger): a shadow inside an element whose corners
+  //     are lit, which linear interpolation misses and the surplus does not show. The
+  //     solve stops by the other two (ErrorEstimate::stop_measure()).
   // Measured against the path-traced reference in tests/error_estimate_test.cpp.
   ErrorEstimate estimate_error();
   // The part of the estimate that is the unshot light, per unit reflectance (see
@@ -620,22 +624,29 @@ class Solver {
   // patch size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
   // the reflectance, what the written value adds to the ambient term (near_unshot.cpp).
   std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
-  // The mesh's error on the primary sources' own light (direct_gap.cpp): per leaf,
-  // |reflectance x (direct light at the centroid - the mean of its corners')|, kept
+  // The mesh's error on the primary sources' shadows (direct_gap.cpp): per leaf, the
+  // unoccluded direct light at the centroid times the reflectance times |the share of
+  // it that arrives there - the mean of the corners' shares|, kept
   // for the elements and receivers already looked at; update_direct_gaps() computes
   // the new ones (SolveOptions::direct_check).
   void update_direct_gaps();
   double direct_gap(ElementId e) const;  // 0 where not computed
   void choose_direct_sources();
-  // Every primary source (direct_sources_) has shot. Until then the solve does not stop
+  // Every primary source (direct_sources_) has shot, but patches holding at most the
+  // error target's share of the primary patches' emitted power. Until then the solve does not stop
   // by its estimate: in an open model the ambient term takes the unshot light as lost
   // in the share the shots so far lost, and a lamp of two triangles 10 m above a
   // 1 m floor stopped after one of them with half the floor's light missing and 0.19%
   // estimated.
   bool primary_sources_shot();
-  // Direct light at x (normal n) from direct_sources_, per unit reflectance, with its
-  // own seeded rays (`key`).
-  Rgb direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const;
+  // Direct light at x (normal n) from direct_sources_, per unit reflectance: what
+  // arrives, with its own seeded rays (`key`), and what would without occluders.
+  struct DirectLight {
+    Rgb seen, open;
+    // The share that arrives, light-weighted over the sources; 1 where none could.
+    double seen_fraction() const { return open.luminance() > 0 ? seen.luminance() / open.luminance() : 1.0; }
+  };
+  DirectLight direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const;
   static constexpr std::size_t kDirectPatches = 16;  // the brightest emitting patches looked at
   static constexpr double kDirectShare = 0.9;        // of the patches' emitted power, or none
   static constexpr int kDirectRays = 16;             // per emitting patch and point, after 4 that disagree
@@ -643,7 +654,7 @@ class Solver {
   std::vector<std::uint32_t> direct_sources_;        // luminaires but the sky, then patches
   bool direct_sources_chosen_ = false;
   std::vector<float> direct_gap_;      // per element; < 0: not yet computed
-  std::vector<Rgb> receiver_direct_;   // per receiver; r < 0: not yet computed
+  std::vector<float> receiver_seen_;   // per receiver, DirectLight::seen_fraction(); < 0: not yet computed
   struct CornerFormFactor {
     double visible = 0, unoccluded = 0;
     RayVerdict verdict = RayVerdict::none;  // how the visible part was decided

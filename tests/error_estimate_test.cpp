@@ -401,24 +401,26 @@ TEST(ErrorEstimate, DirectCheckSeesAShadowInsideAnElementWhoseCornersAreLit) {
   Solved blind = solve(true, false), seeing = solve(true, true), open = solve(false, true);
   const double blind_vertex = floor_estimate(blind), seeing_vertex = floor_estimate(seeing),
                open_vertex = floor_estimate(open);
-  std::printf("mesh part: shadow %.3f%%, shadow without the check %.3f%%, no block %.3f%%; largest floor vertex "
-              "estimate %.1f%%, %.1f%%, %.1f%%\n",
-              100 * seeing.report.estimated_error.discretisation, 100 * blind.report.estimated_error.discretisation,
-              100 * open.report.estimated_error.discretisation, 100 * seeing_vertex, 100 * blind_vertex,
-              100 * open_vertex);
+  std::printf("shadows' part: shadow %.3f%%, shadow without the check %.3f%%, no block %.3f%%; largest floor "
+              "vertex estimate %.1f%%, %.1f%%, %.1f%%\n",
+              100 * seeing.report.estimated_error.shadows, 100 * blind.report.estimated_error.shadows,
+              100 * open.report.estimated_error.shadows, 100 * seeing_vertex, 100 * blind_vertex, 100 * open_vertex);
   // Without the check the mesh part is zero: no element was ever refined.
   EXPECT_EQ(blind.report.estimated_error.discretisation, 0.0);
+  EXPECT_EQ(blind.report.estimated_error.shadows, 0.0);
   EXPECT_LT(blind_vertex, 0.02);
   // With it, the shadowed triangle's corners carry two thirds of the jump at its
   // centroid, which takes no direct light: about two thirds of what they hold. Without
-  // the block the direct light is nearly even and the check finds little.
+  // the block nothing is occluded and the check finds nothing (it looks at shadows,
+  // not at how the light bends: that is the surplus's part).
   EXPECT_GT(seeing_vertex, 0.4);
-  EXPECT_GT(seeing.report.estimated_error.discretisation, 0.1);
-  EXPECT_LT(open_vertex, 0.03);
-  EXPECT_LT(open.report.estimated_error.discretisation, 0.01);
+  EXPECT_GT(seeing.report.estimated_error.shadows, 0.1);
+  EXPECT_EQ(seeing.report.estimated_error.discretisation, 0.0);
+  EXPECT_LT(open_vertex, 0.01);
+  EXPECT_LT(open.report.estimated_error.shadows, 0.001);
   // The check's rays are seeded: the same answer twice.
   Solved again = solve(true, true);
-  EXPECT_EQ(again.report.estimated_error.discretisation, seeing.report.estimated_error.discretisation);
+  EXPECT_EQ(again.report.estimated_error.shadows, seeing.report.estimated_error.shadows);
 }
 
 }  // namespace

@@ -398,10 +398,11 @@ int run_solve(SolveCliOptions& options) {
   if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
-               "mesh), {} visibility rays; exposure {:.4g}",
+               "mesh, {:.2f}% shadows inside elements), {} visibility rays; exposure {:.4g}",
                report.iterations, report.seconds, report.stopped_by, 100 * report.unshot_fraction,
                100 * report.estimated_error.total(), 100 * report.estimated_error.unshot,
-               100 * report.estimated_error.discretisation, report.visibility_rays, exposure);
+               100 * report.estimated_error.discretisation, 100 * report.estimated_error.shadows,
+               report.visibility_rays, exposure);
   spdlog::info("energy ({}): emitted {:.4g}, absorbed {:.4g}, escaped {:.4g}, unshot {:.4g} (sum over channels)",
                photometric ? "lm" : "W if the model is in metres",
                e.emitted.r + e.emitted.g + e.emitted.b, e.absorbed.r + e.absorbed.g + e.absorbed.b,
@@ -485,7 +486,8 @@ int run_solve(SolveCliOptions& options) {
                      {"converge", options.solve.converge}};
     j["estimated_error"] = {{"total", report.estimated_error.total()},
                             {"unshot", report.estimated_error.unshot},
-                            {"discretisation", report.estimated_error.discretisation}};
+                            {"discretisation", report.estimated_error.discretisation},
+                            {"shadows", report.estimated_error.shadows}};
     j["energy"] = {{"emitted", rgb_json(e.emitted)},
                    {"absorbed", rgb_json(e.absorbed)},
                    {"escaped", rgb_json(e.escaped)},
@@ -521,7 +523,13 @@ int run_solve(SolveCliOptions& options) {
                  "shooting longer would not help. Try --quality high, or a smaller --patch-size or a larger "
                  "--max-level.",
                  100 * report.estimated_error.total(), 100 * options.solve.error_target,
-                 100 * report.estimated_error.discretisation);
+                 100 * (report.estimated_error.discretisation + report.estimated_error.shadows));
+  else if (report.stopped_by == "error target" && report.estimated_error.total() > options.solve.error_target)
+    spdlog::warn("the estimated error is {:.2f}%, above the target {:.2f}%: {:.2f}% of it is shadows' edges inside "
+                 "elements, which shooting longer does not change. Where they matter, try --quality high or a "
+                 "smaller --patch-size; the PLY's `error` shows where they are.",
+                 100 * report.estimated_error.total(), 100 * options.solve.error_target,
+                 100 * report.estimated_error.shadows);
   else if (report.stopped_by != "converged" && report.stopped_by != "error target")
     spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", report.stopped_by,
                  100 * report.unshot_fraction, 100 * options.solve.converge);

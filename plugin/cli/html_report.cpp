@@ -113,8 +113,9 @@ void write_html_report(const std::string& path, const json& r) {
   if (r.contains("estimated_error")) {
     const json& e = r["estimated_error"];
     h << row("Estimated error",
-             fmt::format("{:.2f}% (unshot light {:.2f}%, mesh {:.2f}%)", 100 * e.value("total", 0.0),
-                         100 * e.value("unshot", 0.0), 100 * e.value("discretisation", 0.0)));
+             fmt::format("{:.2f}% (unshot light {:.2f}%, mesh {:.2f}%, shadows inside elements {:.2f}%)",
+                         100 * e.value("total", 0.0), 100 * e.value("unshot", 0.0),
+                         100 * e.value("discretisation", 0.0), 100 * e.value("shadows", 0.0)));
   }
   h << row("Unshot at the end", fmt::format("{:.3f}%", 100 * r.value("unshot_fraction", 0.0)));
   if (r.contains("energy")) {
