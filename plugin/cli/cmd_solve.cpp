@@ -525,9 +525,9 @@ int run_solve(SolveCliOptions& options) {
                  100 * report.estimated_error.total(), 100 * options.solve.error_target,
                  100 * (report.estimated_error.discretisation + report.estimated_error.shadows));
   else if (report.stopped_by == "error target" && report.estimated_error.total() > options.solve.error_target)
-    spdlog::warn("the estimated error is {:.2f}%, above the target {:.2f}%: {:.2f}% of it is shadows' edges inside "
-                 "elements, which shooting longer does not change. Where they matter, try --quality high or a "
-                 "smaller --patch-size; the PLY's `error` shows where they are.",
+    spdlog::info("the estimated error is {:.2f}%, above the target {:.2f}%: {:.2f}% of it is shadows' edges inside "
+                 "elements, which shooting longer does not change; the PLY's `error` shows where they are, and a "
+                 "smaller --patch-size or a higher --quality draws them more finely.",
                  100 * report.estimated_error.total(), 100 * options.solve.error_target,
                  100 * report.estimated_error.shadows);
   else if (report.stopped_by != "converged" && report.stopped_by != "error target")
