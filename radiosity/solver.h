@@ -636,7 +636,7 @@ class Solver {
   // error target's share of the primary patches' emitted power. Until then the solve does not stop
   // by its estimate: in an open model the ambient term takes the unshot light as lost
   // in the share the shots so far lost, and a lamp of two triangles 10 m above a
-  // 1 m floor stopped after one of them with half the floor's light missing and 0.19%
+  // 1 m floor stopped after one of them with half the floor's light missing and 0.47%
   // estimated.
   bool primary_sources_shot();
   // Direct light at x (normal n) from direct_sources_, per unit reflectance: what

@@ -432,7 +432,7 @@ namespace {
 // An open model: a square lamp of two triangles 10 m above a 1 m floor. Each triangle's
 // shot loses nearly all its light to the outside, and the ambient term takes the
 // unshot light as lost in the same share: after the first triangle the estimate said
-// 0.19% with half the floor's light missing, and the solve stopped there. The estimate
+// 0.47% with half the floor's light missing, and the solve stopped there. The estimate
 // now waits until every primary source has shot (Solver::primary_sources_shot).
 TEST(ErrorEstimate, AnOpenModelDoesNotStopBeforeEveryLampTriangleHasShot) {
   test::TempDir dir;
