@@ -1370,7 +1370,7 @@ Solver::Output Solver::output(bool ambient_display) {
   out.emitter.assign(out.split.size(), 0);
   out.irradiance.assign(out.split.size(), Rgb());
   std::vector<double> weight(out.split.size(), 0.0);
-  std::vector<double> surplus_at(out.split.size(), 0.0), unshot_at(out.split.size(), 0.0);
+  std::vector<double> mesh_at(out.split.size(), 0.0), unshot_at(out.split.size(), 0.0);
   const Rgb unshot_error = unshot_error_radiosity();
   auto arriving = [](const Rgb& b, const Patch& p) {
     auto channel = [](double value, double e, double rho) { return rho > 0 ? (value - e) / rho : 0.0; };
@@ -1393,7 +1393,7 @@ Solver::Output Solver::output(bool ambient_display) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
     const Rgb extra = patches_[el.patch].reflectance * ambient_now;
-    const double surplus_here = mesh_error(e);
+    const double mesh_here = mesh_error(e);
     const double unshot_here = (patches_[el.patch].reflectance * unshot_error).luminance();
     int k = 0;
     for (auto v : mesh.fv_range(f)) {
@@ -1407,7 +1407,7 @@ Solver::Output Solver::output(bool ambient_display) {
         }
       weight[node] += el.area;
       out.emitter[node] = scene_.material(f).emits();
-      surplus_at[node] = std::max(surplus_at[node], surplus_here);
+      mesh_at[node] = std::max(mesh_at[node], mesh_here);
       unshot_at[node] = std::max(unshot_at[node], unshot_here);
     }
   }
@@ -1417,7 +1417,7 @@ Solver::Output Solver::output(bool ambient_display) {
       out.radiosity[i] = out.radiosity[i] * (1.0 / weight[i]);
       out.irradiance[i] = out.irradiance[i] * (1.0 / weight[i]);
       const double b = out.radiosity[i].luminance();
-      if (b > 0) out.error[i] = static_cast<float>((surplus_at[i] + unshot_at[i]) / b);
+      if (b > 0) out.error[i] = static_cast<float>((mesh_at[i] + unshot_at[i]) / b);
     }
   return out;
 }
