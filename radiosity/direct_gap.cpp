@@ -83,7 +83,6 @@ bool Solver::primary_sources_shot() {
 
 Solver::DirectLight Solver::direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const {
   DirectLight sum;
-  Vec3d targets[kDirectRays];
   for (const std::uint32_t id : direct_sources_) {
     const std::uint64_t seed = mix(options_.seed ^ mix((key << 32) ^ id ^ 0x5eedd1ec7ULL));
     if (is_luminaire(id)) {
@@ -98,21 +97,10 @@ Solver::DirectLight Solver::direct_light(const Vec3d& x, const Vec3d& n, std::ui
     const double f = point_to_triangle(x, n, s.corners[0], s.corners[1], s.corners[2], s.normal);
     if (!(f > 0)) continue;
     // Four stratified rays first; sixteen more where they disagree (a penumbra).
-    Rng rng{seed};
+    std::uint64_t state = seed;
     int visible = 0, cast = 0;
-    auto pass = [&](int rays) {
-      int rows = 1, columns = 1, count = 0;
-      strata(rays, rows, columns);
-      for (int i = 0; i < rows; ++i)
-        for (int j = 0; j < columns; ++j) {
-          const Vec3d t = point_on_triangle(s.corners, (i + rng.uniform()) / rows, (j + rng.uniform()) / columns);
-          if (OpenMesh::dot(n, t - x) > 0) targets[count++] = t;
-        }
-      visible += visibility_->visible_count(x, n, targets, count, s.normal);
-      cast += count;
-    };
-    pass(4);
-    if (visible > 0 && visible < cast) pass(kDirectRays);
+    cast_to_patch(s, x, n, 4, state, visible, cast);
+    if (visible > 0 && visible < cast) cast_to_patch(s, x, n, kDirectRays, state, visible, cast);
     sum.open += s.emission * f;
     sum.seen += s.emission * (cast > 0 ? f * visible / cast : f);
   }

@@ -589,6 +589,28 @@ double Solver::point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& no
   return point_form_factor_keyed(static_cast<std::uint64_t>(v.idx()), x, normal, sender_id, unoccluded, plan);
 }
 
+// Targets behind (or on) the receiver's plane are left out: the closed form has already
+// clipped that part of the sender away, and counting those targets as hidden would take
+// it away twice. (A floor patch that the plane of a block's side cuts was seen as much as
+// a quarter darker from points near the block's foot: the spikes of the Cornell demo,
+// tests/pictures_test.cpp.)
+void Solver::cast_to_patch(const Patch& sender, const Vec3d& x, const Vec3d& normal, int rays, std::uint64_t& state,
+                           int& visible, int& cast) const {
+  Rng rng{state};
+  Vec3d targets[256];
+  int side = 1, columns = 1;
+  strata(rays, side, columns);
+  int n = 0;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < columns; ++j) {
+      const Vec3d t = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / columns);
+      if (OpenMesh::dot(normal, t - x) > 0) targets[n++] = t;
+    }
+  visible += visibility_->visible_count(x, normal, targets, n, sender.normal);
+  cast += n;
+  state = rng.state;
+}
+
 double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& normal, std::uint32_t sender_id,
                                        double* unoccluded, const RayPlan& plan) const {
   if (plan.verdict) *plan.verdict = RayVerdict::none;
@@ -617,29 +639,11 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   if (unoccluded) *unoccluded = f;
   if (f <= 0) return 0.0;
   // Visible fraction: a few rays first; more only where those disagree.
-  Rng rng{mix(options_.seed ^ mix((key << 32) ^ sender_id))};
+  std::uint64_t state = mix(options_.seed ^ mix((key << 32) ^ sender_id));
   int visible = 0, cast = 0;
-  Vec3d targets[256];
-  // Targets behind (or on) the receiver's plane are left out: the closed form has
-  // already clipped that part of the sender away, and counting those targets as hidden
-  // would take it away twice. (A floor patch that the plane of a block's side cuts was
-  // seen as much as a quarter darker from points near the block's foot: the spikes of
-  // the Cornell demo, tests/pictures_test.cpp.)
-  auto pass = [&](int count) {
-    int side = 1, columns = 1;
-    strata(count, side, columns);
-    int n = 0;
-    for (int i = 0; i < side; ++i)
-      for (int j = 0; j < columns; ++j) {
-        const Vec3d t = point_on_triangle(sender.corners, (i + rng.uniform()) / side, (j + rng.uniform()) / columns);
-        if (OpenMesh::dot(normal, t - x) > 0) targets[n++] = t;
-      }
-    visible += visibility_->visible_count(x, normal, targets, n, sender.normal);
-    cast += n;
-  };
-  pass(options_.min_rays);
+  cast_to_patch(sender, x, normal, options_.min_rays, state, visible, cast);
   const bool agreed = visible == 0 || visible == cast;
-  if (!agreed || plan.full) pass(options_.max_rays);
+  if (!agreed || plan.full) cast_to_patch(sender, x, normal, options_.max_rays, state, visible, cast);
   if (cast == 0) return f;  // the sender lies (all but) behind the plane: f is about 0 anyway
   if (plan.verdict) *plan.verdict = !agreed || plan.full ? RayVerdict::mixed : visible == 0 ? RayVerdict::hidden : RayVerdict::seen;
   return f * visible / cast;

@@ -575,6 +575,12 @@ class Solver {
   // with rays (seeded by `key`) when `rays`.
   double cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t key, bool rays, double* unoccluded) const;
   double cluster_lost_fraction(std::uint32_t cluster);
+  // Casts `rays` visibility rays from x (on a surface with unit normal n) to seeded
+  // points of patch `sender`, stratified (strata()), leaving out points behind or on
+  // x's plane; adds those that arrive to `visible` and those cast to `cast`. Drawn
+  // from the random stream `state`.
+  void cast_to_patch(const Patch& sender, const Vec3d& x, const Vec3d& n, int rays, std::uint64_t& state,
+                     int& visible, int& cast) const;
   // The form factor at a point with its own seed key (a vertex's index, or a part's).
   double point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
                                  double* unoccluded, const RayPlan& plan = {}) const;
