@@ -34,7 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstddef>
 
 namespace dynrad::rad {
 
@@ -59,10 +59,10 @@ void Solver::choose_direct_sources() {
     all += power(emitting[k]);
     if (k < kDirectPatches) kept += power(emitting[k]);
   }
-  if (kept >= kDirectShare * all && emitting.size() <= kDirectPatches)
-    direct_sources_.insert(direct_sources_.end(), emitting.begin(), emitting.end());
-  else if (kept >= kDirectShare * all)
-    direct_sources_.insert(direct_sources_.end(), emitting.begin(), emitting.begin() + kDirectPatches);
+  if (kept >= kDirectShare * all) {
+    const auto count = static_cast<std::ptrdiff_t>(std::min(emitting.size(), kDirectPatches));
+    direct_sources_.insert(direct_sources_.end(), emitting.begin(), emitting.begin() + count);
+  }
   direct_sources_chosen_ = true;
 }
 
