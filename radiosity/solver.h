@@ -632,18 +632,18 @@ class Solver {
   std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
   // The mesh's error on the primary sources' shadows (direct_gap.cpp): per leaf, the
   // unoccluded direct light at the centroid times the reflectance times |the share of
-  // it that arrives there - the mean of the corners' shares|, kept
-  // for the elements and receivers already looked at; update_direct_gaps() computes
-  // the new ones (SolveOptions::direct_check).
+  // it that arrives there - the mean of the corners' shares|. Kept for the elements and
+  // receivers already looked at; update_direct_gaps() computes the new ones
+  // (SolveOptions::direct_check).
   void update_direct_gaps();
   double direct_gap(ElementId e) const;  // 0 where not computed
   void choose_direct_sources();
   // Every primary source (direct_sources_) has shot, but patches holding at most the
-  // error target's share of the primary patches' emitted power. Until then the solve does not stop
-  // by its estimate: in an open model the ambient term takes the unshot light as lost
-  // in the share the shots so far lost, and a lamp of two triangles 10 m above a
-  // 1 m floor stopped after one of them with half the floor's light missing and 0.47%
-  // estimated.
+  // error target's share of the primary patches' emitted power. Until then the solve
+  // does not stop by its estimate: in an open model the ambient term takes the unshot
+  // light as lost in the share the shots so far lost, and a lamp of two triangles 10 m
+  // above a 1 m floor stopped after one of them with half the floor's light missing
+  // and 0.47% estimated.
   bool primary_sources_shot();
   // Direct light at x (normal n) from direct_sources_, per unit reflectance: what
   // arrives, with its own seeded rays (`key`), and what would without occluders.
