@@ -12,9 +12,9 @@ namespace {
 double sum_of(const Rgb& c) { return c.r + c.g + c.b; }
 }  // namespace
 
-ErrorEstimate Solver::estimate_error() {
+ErrorEstimate Solver::estimate_error(bool shadows) {
   flush_all();  // every leaf holds what was pushed down above it
-  update_direct_gaps();
+  if (shadows) update_direct_gaps();
   const Rgb ambient_now = ambient();
   const Rgb ambient_error = unshot_error_radiosity();
   struct Sums {
@@ -37,7 +37,7 @@ ErrorEstimate Solver::estimate_error() {
           s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance();
           const double bend = 0.5 * surplus(e);
           s.surplus_area += el.area * bend;
-          s.shadow_area += el.area * (mesh_error(e) - bend);
+          if (shadows) s.shadow_area += el.area * (mesh_error(e) - bend);
         }
         return s;
       },

@@ -81,9 +81,10 @@ struct SolveOptions {
   // them most (an edge vertex takes half its light from the patches along the other
   // side of the edge). The ambient term, one area-weighted mean, cannot give that back:
   // a 1 x 1 x 3 furnace at the defaults kept an edge vertex 5.7% dark, 1.2% with this
-  // rule in as many shots, 0.8% with near_unshot too (bench/README.md). Without the cap at twice, the much smaller
-  // patches of imprinted lines shot far more often: the IFC house took 14% more shots
-  // (25% with detail counted too); with it, as many (4,338). False: power alone.
+  // rule in as many shots, 0.8% with near_unshot too (bench/README.md). Without the cap
+  // at twice, the much smaller patches of imprinted lines shot far more often: the IFC
+  // house took 14% more shots (25% with detail counted too); with it, as many (4,338).
+  // False: power alone.
   bool whole_patch_senders = true;
   // Face clusters (mesh/face_clusters.h): patches whose facet (the patches that touch
   // in one plane) has less area than cluster_area and that emit nothing are grouped, within spheres of radius cluster_radius, into clusters

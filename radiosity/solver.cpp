@@ -1449,7 +1449,7 @@ SolveReport Solver::run() {
         (unshot_fraction() < 0.8 * checked_unshot || report_.iterations >= checked_at + std::max<std::size_t>(64, report_.iterations / 32))) {
       checked_unshot = unshot_fraction();
       checked_at = report_.iterations;
-      report_.estimated_error = estimate_error();
+      report_.estimated_error = estimate_error(false);
       const ErrorEstimate& e = report_.estimated_error;
       // Not before every primary source has shot: the light of one that has not is no
       // ambient term but direct light that the surfaces under it lack altogether.

@@ -185,7 +185,9 @@ class Solver {
   //     are lit, which linear interpolation misses and the surplus does not show. The
   //     solve stops by the other two (ErrorEstimate::stop_measure()).
   // Measured against the path-traced reference in tests/error_estimate_test.cpp.
-  ErrorEstimate estimate_error();
+  // Without `shadows` that part is left at 0 and not computed: the solve's looks stop by
+  // the other two (ErrorEstimate::stop_measure()), so only the last estimate needs it.
+  ErrorEstimate estimate_error(bool shadows = true);
   // The part of the estimate that is the unshot light, per unit reflectance (see
   // estimate_error()).
   Rgb unshot_error_radiosity() const;

@@ -346,18 +346,13 @@ TEST(ErrorEstimate, PerVertexEstimateBoundsEveryVertexOfAFurnace) {
   EXPECT_LT(worst, 0.01);
 }
 
-}  // namespace
-}  // namespace dynrad
-
-namespace dynrad {
-namespace {
 
 // A shadow inside an element whose corners all see the source: a 1 x 1 m floor of two
-// whole patches (no refinement, no clusters) under a 0.5 m triangular source 10 m above (its direct
-// light is even over the floor to within 1.5%), and a small black block 0.3 m above
-// the centroid of one floor triangle, which puts that centroid in full shadow while
-// the triangle's corners are lit. The surplus cannot see it (no leaf has a parent);
-// the direct check does (radiosity/direct_gap.cpp).
+// whole patches (no refinement, no clusters) under a 0.5 m triangular source 10 m
+// above (its direct light is even over the floor to within 1.5%), and a small black
+// block 0.3 m above the centroid of one floor triangle, which puts that centroid in
+// full shadow while the triangle's corners are lit. The surplus cannot see it (no leaf
+// has a parent); the direct check does (radiosity/direct_gap.cpp).
 std::string write_shadow_inside_an_element(test::TempDir& dir, bool block) {
   dir.write("shadow.mtl",
             "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\nnewmtl block\nKd 0 0 0\n");
@@ -423,11 +418,6 @@ TEST(ErrorEstimate, DirectCheckSeesAShadowInsideAnElementWhoseCornersAreLit) {
   EXPECT_EQ(again.report.estimated_error.shadows, seeing.report.estimated_error.shadows);
 }
 
-}  // namespace
-}  // namespace dynrad
-
-namespace dynrad {
-namespace {
 
 // An open model: a square lamp of two triangles 10 m above a 1 m floor. Each triangle's
 // shot loses nearly all its light to the outside, and the ambient term takes the
