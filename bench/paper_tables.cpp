@@ -118,6 +118,7 @@ Run solve(const std::string& sample, rad::Method method, int level, std::size_t 
   rad::RefineSettings refine;
   refine.method = method;
   refine.max_level = level;
+  refine.sharp_primary_patches = false;  // every shot to the level compared, as the paper's
   if (threshold >= 0) refine.adaptive_threshold = threshold;
   refine.dynamic = dynamic.oracle;
   refine.new_elements = dynamic.new_elements;

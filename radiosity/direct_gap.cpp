@@ -81,6 +81,12 @@ bool Solver::primary_sources_shot() {
   return waiting <= options_.error_target * all;
 }
 
+bool Solver::primary_patch_unshot(std::uint32_t i) {
+  if (is_luminaire(i) || is_cluster(i) || !patches_[i].shot.is_zero()) return false;
+  if (!direct_sources_chosen_) choose_direct_sources();
+  return std::find(direct_sources_.begin(), direct_sources_.end(), i) != direct_sources_.end();
+}
+
 Solver::DirectLight Solver::direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const {
   DirectLight sum;
   for (const std::uint32_t id : direct_sources_) {

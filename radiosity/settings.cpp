@@ -85,6 +85,10 @@ AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& re
     out.patch_size_rule = "a tenth of the diagonal";
   }
   refine.max_level = request.max_level >= 0 ? request.max_level : dynamic ? c.preset.max_level : 3;
+  // A level given is the level every patch's shot refines to, as in the paper's
+  // comparisons of adaptive and dynamic subdivision at one level (luminaires, which the
+  // paper has not, still add theirs).
+  refine.sharp_primary_patches = request.max_level < 0;
   if (dynamic && refine.dynamic.variant == OracleThresholds::Variant::pushdown) {
     refine.dynamic.pushdown = c.preset.pushdown;
     refine.dynamic.pushdown_floor = c.preset.pushdown_floor;

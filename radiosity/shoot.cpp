@@ -139,15 +139,21 @@ bool Solver::shoot_once() {
   // Less on detail (Patch::detail: the facets of frames, radiators, skirting boards,
   // chair parts): RefineSettings::detail_luminaire_levels, the patches' push-down error
   // and no shadow levels.
+  // A small area light's first shot, its emission, is as sharp, and its penumbrae get
+  // more rays (RefineSettings::sharp_primary_patches, SolveOptions::primary_rays).
   const bool from_luminaire = is_luminaire(i);
-  const bool sharp = from_luminaire && luminaire(i).kind != Luminaire::Kind::sky;
-  const int max_generation = 2 * (refine_.max_level + (sharp ? refine_.luminaire_levels : 0));
-  const int detail_generation = 2 * (refine_.max_level + (sharp ? refine_.detail_luminaire_levels : 0));
+  const bool primary = refine_.sharp_primary_patches && refine_.method == Method::dynamic && primary_patch_unshot(i);
+  const bool sharp = (from_luminaire && luminaire(i).kind != Luminaire::Kind::sky) || primary;
+  shot_max_rays_ = primary ? std::max(options_.max_rays, options_.primary_rays) : options_.max_rays;
+  const int sharp_levels = primary ? refine_.primary_levels : sharp ? refine_.luminaire_levels : 0;
+  const int max_generation = 2 * (refine_.max_level + sharp_levels);
+  const int detail_generation = 2 * (refine_.max_level + std::min(sharp_levels, sharp ? refine_.detail_luminaire_levels : 0));
   OracleThresholds oracle = refine_.dynamic;
-  if (from_luminaire) {
-    if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
-    // and the error is estimated wherever the shot reaches (its closed form is cheap):
-    // an element with even corners may hold the peak of a pool of light.
+  if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
+  if (from_luminaire || primary) {
+    // The error is estimated wherever the shot reaches (one shot, and a luminaire's
+    // closed form is cheap): an element with even corners may hold the peak of a pool
+    // of light.
     oracle.pushdown_cumulated_gradient = 0;
   }
   OracleThresholds detail_oracle = oracle;

@@ -57,6 +57,7 @@ Solver::Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions optio
       options_(std::move(options)),
       refine_(refine),
       luminaires_(std::move(luminaires)) {
+  shot_max_rays_ = options_.max_rays;
   visibility_ = std::make_unique<Visibility>(scene_);
   patches_.resize(hierarchy_.patch_count());
   std::vector<ElementId> leaves;
@@ -643,7 +644,7 @@ double Solver::point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const 
   int visible = 0, cast = 0;
   cast_to_patch(sender, x, normal, options_.min_rays, state, visible, cast);
   const bool agreed = visible == 0 || visible == cast;
-  if (!agreed || plan.full) cast_to_patch(sender, x, normal, options_.max_rays, state, visible, cast);
+  if (!agreed || plan.full) cast_to_patch(sender, x, normal, shot_max_rays_, state, visible, cast);
   if (cast == 0) return f;  // the sender lies (all but) behind the plane: f is about 0 anyway
   if (plan.verdict) *plan.verdict = !agreed || plan.full ? RayVerdict::mixed : visible == 0 ? RayVerdict::hidden : RayVerdict::seen;
   return f * visible / cast;

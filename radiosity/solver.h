@@ -91,6 +91,19 @@ struct RefineSettings {
   // levels bound); with 3 and a quarter, 0.29% (64,000 elements).
   int luminaire_levels = 3;
   double luminaire_pushdown = 0.25;
+  // Dynamic: the first shot of a primary emitting patch (Solver's direct sources: the
+  // emitting patches when at most 16 hold 90% of the emitted power, a small area light
+  // such as the 1990 room's 0.5 m source) refines as a luminaire's shot does, with
+  // luminaire_pushdown and primary_levels: its pool of light bends on the scale of its
+  // height, not of the patches. On the 1990 room at the defaults the floor below the
+  // source was 1.6% dark between exact vertices 0.6 m apart (bench/README.md). Later
+  // shots of the same patch (light it reflects) are a patch's.
+  bool sharp_primary_patches = true;
+  // Levels beyond max_level for that shot: fewer than a luminaire's, since an area
+  // light's penumbrae are decided by rays. With 3, the Cornell demo's floor by the red
+  // wall kept a vertex 4.5% off a ring spanning 3.9% at two of five seeds
+  // (tests/pictures_test.cpp; 26,000 vertices); with 2, none beyond 2.9% (12,400).
+  int primary_levels = 2;
   // Dynamic, shots from luminaires onto detail (Solver's Patch::detail: facets smaller
   // than the patch size squared, such as frames, radiators, skirting boards and chair
   // parts): paper levels beyond max_level, with the patches' own push-down error and no
@@ -647,6 +660,12 @@ class Solver {
   // above a 1 m floor stopped after one of them with half the floor's light missing
   // and 0.47% estimated.
   bool primary_sources_shot();
+  // Patch i is a primary source that has not shot: its next shot carries its emission
+  // (RefineSettings::sharp_primary_patches, SolveOptions::primary_rays).
+  bool primary_patch_unshot(std::uint32_t i);
+  // Rays added where a point's first rays disagree in the current shot: SolveOptions::
+  // max_rays, or primary_rays in a primary patch's first shot.
+  int shot_max_rays_ = 16;
   // Direct light at x (normal n) from direct_sources_, per unit reflectance: what
   // arrives, with its own seeded rays (`key`), and what would without occluders.
   struct DirectLight {

@@ -146,7 +146,7 @@ double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d&
   };
   pass(options_.min_rays);
   const bool agreed = hits == 0 || hits == cast;
-  if (!agreed || plan.full) pass(options_.max_rays);
+  if (!agreed || plan.full) pass(shot_max_rays_);
   if (cast == 0) return f;  // the group lies (all but) behind x's plane
   if (plan.verdict) *plan.verdict = !agreed || plan.full ? RayVerdict::mixed : hits == 0 ? RayVerdict::hidden : RayVerdict::seen;
   return std::max(0.0, total * signed_hits / cast);

@@ -556,7 +556,8 @@ Command add_solve_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   command->add_option("--max-level", options->max_level,
                       "1->4 splits allowed below a patch (the paper's level L is --max-level L-1; default: the quality's, "
-                      "3 for progressive and adaptive)")
+                      "3 for progressive and adaptive; given, it holds for a small emitting patch's first shot too, which "
+                      "otherwise refines 2 levels deeper)")
       ->check(CLI::Range(0, 12));
   command->add_option("--threshold", options->threshold,
                       "Adaptive's gradient threshold (default 0.25); also all three of the paper oracle's")
