@@ -30,9 +30,10 @@ struct SolveOptions {
   int max_rays = 16;               // added when the first pass finds the sender partly hidden
   // The same in the first shot of a primary emitting patch (a small area light; see
   // RefineSettings::sharp_primary_patches): its penumbrae are the sharpest light a patch
-  // casts and most of a vertex's value there, and 16 rays over the source leave its
-  // visible share off by several percent. On the obstructed 1990 room the mean error
-  // falls from 0.97% (16) to 0.87% (64); the largest in a penumbra from 15% to 9%.
+  // casts and most of a vertex's value there, and that shot's finer elements put many
+  // vertices in them. With 16 the Cornell demo kept 31-46 vertices more than 2% off
+  // their rings, the worst 6-8% (tests/pictures_test.cpp, seeds 1-5); with 64, at most
+  // 2, the worst 2.9%. The obstructed 1990 room's mean error: 0.93% (16), 0.89% (64).
   int primary_rays = 64;
   int escape_rays = 1024;          // rays per sender to measure the power it loses to the outside
   std::uint64_t seed = 1;          // all sampling is seeded: same input, same answer
