@@ -147,7 +147,7 @@ bool Solver::shoot_once() {
   shot_max_rays_ = primary ? std::max(options_.max_rays, options_.primary_rays) : options_.max_rays;
   const int sharp_levels = primary ? refine_.primary_levels : sharp ? refine_.luminaire_levels : 0;
   const int max_generation = 2 * (refine_.max_level + sharp_levels);
-  const int detail_generation = 2 * (refine_.max_level + std::min(sharp_levels, sharp ? refine_.detail_luminaire_levels : 0));
+  const int detail_generation = 2 * (refine_.max_level + std::min(sharp_levels, refine_.detail_luminaire_levels));
   OracleThresholds oracle = refine_.dynamic;
   if (sharp) oracle.pushdown *= refine_.luminaire_pushdown;
   if (from_luminaire || primary) {

@@ -664,8 +664,8 @@ class Solver {
   // (RefineSettings::sharp_primary_patches, SolveOptions::primary_rays).
   bool primary_patch_unshot(std::uint32_t i);
   // Rays added where a point's first rays disagree in the current shot: SolveOptions::
-  // max_rays, or primary_rays in a primary patch's first shot.
-  int shot_max_rays_ = 16;
+  // max_rays (set by the constructor), or primary_rays in a primary patch's first shot.
+  int shot_max_rays_ = 0;
   // Direct light at x (normal n) from direct_sources_, per unit reflectance: what
   // arrives, with its own seeded rays (`key`), and what would without occluders.
   struct DirectLight {

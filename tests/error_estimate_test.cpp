@@ -346,7 +346,6 @@ TEST(ErrorEstimate, PerVertexEstimateBoundsEveryVertexOfAFurnace) {
   EXPECT_LT(worst, 0.01);
 }
 
-
 // A shadow inside an element whose corners all see the source: a 1 x 1 m floor of two
 // whole patches (no refinement, no clusters) under a 0.5 m triangular source 10 m
 // above (its direct light is even over the floor to within 1.5%), and a small black
@@ -417,7 +416,6 @@ TEST(ErrorEstimate, DirectCheckSeesAShadowInsideAnElementWhoseCornersAreLit) {
   Solved again = solve(true, true);
   EXPECT_EQ(again.report.estimated_error.shadows, seeing.report.estimated_error.shadows);
 }
-
 
 // An open model: a square lamp of two triangles 10 m above a 1 m floor. Each triangle's
 // shot loses nearly all its light to the outside, and the ambient term takes the
