@@ -67,8 +67,9 @@ struct RefineSettings {
   // Dynamic: a new vertex starts from its parent's values (a line across the element
   // it was split from) plus, for every patch within one radius of that element that
   // has shot, what that patch's light bends away from the line: rho times the patch's
-  // shot radiosity times its closed-form F at the vertex minus F interpolated from the
-  // element's corners (no rays). Near a junction F is far from linear (on a wall 2 cm
+  // shot radiosity times its F at the vertex minus F interpolated from the element's
+  // corners (closed forms times the share of 4 rays to the patch that arrive: a patch
+  // behind a partition bends nothing). Near a junction F is far from linear (on a wall 2 cm
   // above a floor, a floor patch a little way off is seen only at grazing angles from
   // the foot and well from 4 cm up), and a vertex born between a shot from there and the
   // foot's own patch kept the difference for good: the Cornell demo's dark vertices at
@@ -320,6 +321,7 @@ class Solver {
   // changed nothing the Cornell demo's test sees (bench/README.md).
   bool settles_visibility() const { return sender_ < patches_.size() && !patches_[sender_].emission.is_zero(); }
   static constexpr double kNearFieldShare = 0.05;
+  static constexpr int kNearFieldRays = 4;  // per point and nearby patch: its centroid, halfway to each corner
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
   // elements appear (in id order: the same for any thread count), for elements from
