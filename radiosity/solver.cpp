@@ -503,10 +503,11 @@ void Solver::settle_visibility(const std::vector<ElementId>& elements) {
       // wherever corners disagreed cost a fifth of the solve; with the share, a tenth).
       const ElementId e = elements[n];
       const double light = (patches_[hierarchy_.element(e).patch].reflectance * current_shot_).luminance();
+      const double share = patches_[sender_].emission.is_zero() ? kSettleShareReflected : kSettleShare;
       for (int k = 0; k < 3; ++k) {
         const CornerFormFactor& f = form_factor_[ids[k]];
         if ((f.verdict == RayVerdict::seen || f.verdict == RayVerdict::hidden) &&
-            light * f.unoccluded >= kSettleShare * value_[e][k].luminance())
+            light * f.unoccluded >= share * value_[e][k].luminance())
           marked[c].push_back(ids[k]);
       }
     }
