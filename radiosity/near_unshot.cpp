@@ -15,8 +15,8 @@
 // deviation from the mean, F times (U_j - mean), is added to what the ambient term
 // gives. "Near" is within half a patch size (RefineSettings::patch_area is an eighth of
 // its square). Further off, each patch's share is small and the deviations cancel.
-// Each near patch's F is the closed form times the share of 4 rays to it (its centroid
-// and halfway to each corner) that arrive. Without them a patch behind a partition
+// Each near patch's F is the closed form times the share of it seen
+// (Solver::near_seen_share, 4 rays). Without them a patch behind a partition
 // counted in full: the obstructed 1990 room's ceiling corner behind a partition took
 // the unshot light of the back wall on the partition's lit side, 33% too bright at
 // the draft quality's stop.
@@ -43,7 +43,6 @@ namespace {
 // A patch whose form factor from the receiver is bounded below this (its area over pi
 // times the squared distance to its box) is left to the ambient term.
 constexpr double kNearForm = 0.03;
-constexpr int kNearRays = 4;  // per receiver and near patch
 
 struct PatchTree {
   struct Node {
@@ -145,10 +144,7 @@ std::vector<Rgb> Solver::near_unshot(const std::vector<char>& wanted) const {
           continue;
         const double f = point_to_triangle(r.point, n, p.corners[0], p.corners[1], p.corners[2], p.normal);
         if (!(f > 0) || (p.unshot - mean).is_zero()) continue;
-        const Vec3d targets[kNearRays] = {p.centre, (p.corners[0] + p.centre) * 0.5, (p.corners[1] + p.centre) * 0.5,
-                                          (p.corners[2] + p.centre) * 0.5};
-        const int seen = visibility_->visible_count(r.point, n, targets, kNearRays, p.normal);
-        sum += (p.unshot - mean) * (f * seen / kNearRays);
+        sum += (p.unshot - mean) * (f * near_seen_share(r.point, n, p));
       }
     }
     out[id] = sum;

@@ -1151,17 +1151,20 @@ Rgb Solver::near_field_start(ElementId e, ElementId source, const Vec3d& positio
     // the floor along the foot of the obstructed 1990 room's partition started each
     // new vertex with light from the back wall on the partition's lit side, and ended
     // up to 97% too bright.)
-    const Vec3d targets[kNearFieldRays] = {s.centre, (s.corners[0] + s.centre) * 0.5, (s.corners[1] + s.centre) * 0.5,
-                                           (s.corners[2] + s.centre) * 0.5};
     auto f = [&](const Vec3d& x) {
       const double open = point_to_triangle(x, n, s.corners[0], s.corners[1], s.corners[2], s.normal);
-      if (!(open > 0)) return 0.0;
-      return open * visibility_->visible_count(x, n, targets, kNearFieldRays, s.normal) / kNearFieldRays;
+      return open > 0 ? open * near_seen_share(x, n, s) : 0.0;
     };
     const double bend = f(point) - (l[0] * f(corner_point[0]) + l[1] * f(corner_point[1]) + l[2] * f(corner_point[2]));
     add += s.shot * bend;
   }
   return patch.reflectance * add;
+}
+
+double Solver::near_seen_share(const Vec3d& x, const Vec3d& n, const Patch& p) const {
+  const Vec3d targets[kNearRays] = {p.centre, (p.corners[0] + p.centre) * 0.5, (p.corners[1] + p.centre) * 0.5,
+                                    (p.corners[2] + p.centre) * 0.5};
+  return static_cast<double>(visibility_->visible_count(x, n, targets, kNearRays, p.normal)) / kNearRays;
 }
 
 void Solver::restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot) {

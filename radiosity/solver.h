@@ -327,7 +327,12 @@ class Solver {
   bool settles_visibility() const { return sender_ < patches_.size(); }
   static constexpr double kSettleShareReflected = 0.2;
   static constexpr double kNearFieldShare = 0.05;
-  static constexpr int kNearFieldRays = 4;  // per point and nearby patch: its centroid, halfway to each corner
+  // The share of patch p that point x (normal n) sees, by kNearRays rays: to its
+  // centroid and halfway to each corner. For the near-field corrections, where a
+  // closed form stands for the light of a patch a few decimetres off, which a
+  // partition or a wall's thickness may hide (near_field_start, near_unshot).
+  double near_seen_share(const Vec3d& x, const Vec3d& n, const Patch& p) const;
+  static constexpr int kNearRays = 4;
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
   // elements appear (in id order: the same for any thread count), for elements from
