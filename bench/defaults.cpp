@@ -3,12 +3,14 @@
 // diagonal, stop at 1% unshot, no ambient term). Every run is the command line itself,
 // in a child process, as a user runs it; accuracy is read back with `dynrad probe`.
 //
-//   1990 room (defaults, old defaults, --quality high): mean and largest relative error
-//     over the comparison grid on floor and ceiling (476 points: the 4 ceiling points
-//     on the source's corners are left out)
+//   1990 room (defaults, old defaults, --quality high, --quality draft): mean and
+//     largest relative error over the comparison grid on floor and ceiling (476 points:
+//     the 4 ceiling points on the source's corners are left out)
 //     against the path-traced reference tests/data/globillum_room_reference.txt
 //     (tests/reference/box_tracer.h: 0.1% standard error per point); solve seconds
-//     from the report, median of the runs.
+//     from the report, median of the runs. Then the whole room, the walls' grid too
+//     (tests/data/globillum_room_walls_reference.txt): the area-weighted error, which
+//     is what the report's estimate estimates, and the estimate's ratio to it.
 //   furnace: boxes (a cube and three that are not) whose faces all emit 1 and reflect
 //     0.5; B = 2 everywhere: largest and mean relative error over the written vertices,
 //     and where the largest is (corner, edge, face), at draft, normal and high, at
@@ -53,8 +55,15 @@ nlohmann::json read_json(const fs::path& path) {
 }
 
 struct ReferencePoint {
+  std::string surface;  // floor, ceiling, wall_y0, wall_y6, wall_x0, wall_x10
   bool floor;
   double x, y, z, b;
+  // The normal into the room, from the surface's name.
+  void normal(double n[3]) const {
+    n[0] = surface == "wall_x0" ? 1 : surface == "wall_x10" ? -1 : 0;
+    n[1] = surface == "wall_y0" ? 1 : surface == "wall_y6" ? -1 : 0;
+    n[2] = surface == "floor" ? 1 : surface == "ceiling" ? -1 : 0;
+  }
 };
 
 std::vector<ReferencePoint> read_reference(const std::string& path) {
@@ -68,11 +77,10 @@ std::vector<ReferencePoint> read_reference(const std::string& path) {
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream fields(line);
-    std::string surface;
     ReferencePoint p{};
-    fields >> surface >> p.x >> p.y >> p.z >> p.b;
-    p.floor = surface == "floor";
-    const bool source_corner = !p.floor && (p.x == 4.75 || p.x == 5.25) && (p.y == 2.75 || p.y == 3.25);
+    fields >> p.surface >> p.x >> p.y >> p.z >> p.b;
+    p.floor = p.surface == "floor";
+    const bool source_corner = p.surface == "ceiling" && (p.x == 4.75 || p.x == 5.25) && (p.y == 2.75 || p.y == 3.25);
     if (!source_corner) points.push_back(p);
   }
   return points;
@@ -80,6 +88,10 @@ std::vector<ReferencePoint> read_reference(const std::string& path) {
 
 struct Accuracy {
   double mean = 0, max = 0, floor_signed = 0, ceiling_signed = 0;
+  // What the report's estimate estimates (Solver::estimate_error): the sum of |B -
+  // reference| over the points over the sum of the reference, every point standing for
+  // the same area.
+  double area_weighted = 0;
   std::size_t worst = 0;  // the reference point with the largest error
 };
 
@@ -88,25 +100,38 @@ Accuracy compare(const fs::path& lit, const std::vector<ReferencePoint>& referen
   {
     std::ofstream out(points);
     out.precision(17);
-    for (const auto& p : reference) out << p.x << ' ' << p.y << ' ' << p.z << " 0 0 " << (p.floor ? 1 : -1) << '\n';
+    for (const auto& p : reference) {
+      double n[3];
+      p.normal(n);
+      out << p.x << ' ' << p.y << ' ' << p.z << ' ' << n[0] << ' ' << n[1] << ' ' << n[2] << '\n';
+    }
   }
   run(kDynrad + " probe '" + lit.string() + "' --points '" + points.string() + "' --json -o '" + probed.string() + "'");
   const nlohmann::json j = read_json(probed);
   Accuracy a;
   std::size_t floors = 0, ceilings = 0;
+  double difference_sum = 0, reference_sum = 0;
   for (std::size_t i = 0; i < reference.size(); ++i) {
     const double b = j["points"][i]["radiosity"][1].get<double>();
     const double e = (b - reference[i].b) / reference[i].b;
+    difference_sum += std::abs(b - reference[i].b);
+    reference_sum += reference[i].b;
     a.mean += std::abs(e) / static_cast<double>(reference.size());
     if (std::abs(e) > a.max) {
       a.max = std::abs(e);
       a.worst = i;
     }
-    (reference[i].floor ? a.floor_signed : a.ceiling_signed) += e;
-    ++(reference[i].floor ? floors : ceilings);
+    if (reference[i].surface == "floor") {
+      a.floor_signed += e;
+      ++floors;
+    } else if (reference[i].surface == "ceiling") {
+      a.ceiling_signed += e;
+      ++ceilings;
+    }
   }
-  a.floor_signed /= static_cast<double>(floors);
-  a.ceiling_signed /= static_cast<double>(ceilings);
+  a.floor_signed /= static_cast<double>(std::max<std::size_t>(floors, 1));
+  a.ceiling_signed /= static_cast<double>(std::max<std::size_t>(ceilings, 1));
+  a.area_weighted = difference_sum / reference_sum;
   return a;
 }
 
@@ -182,8 +207,13 @@ int main(int argc, char** argv) {
       {"defaults (no options)", ""},
       {"old defaults", "--method progressive --no-ambient --converge 0.01"},
       {"--quality high", "--quality high"},
+      {"--quality draft", "--quality draft"},
   };
   const std::vector<ReferencePoint> reference = read_reference(DYNRAD_TEST_DATA_DIR "/globillum_room_reference.txt");
+  // Floor, ceiling and walls: the whole room on one 0.5 m grid.
+  std::vector<ReferencePoint> whole_room = reference;
+  for (const ReferencePoint& p : read_reference(DYNRAD_TEST_DATA_DIR "/globillum_room_walls_reference.txt"))
+    whole_room.push_back(p);
   const fs::path lit = kWork / "lit.ply", report = kWork / "report.json";
   auto solve = [&](const std::string& model, const Config& c, const std::string& extra = "") {
     run(kDynrad + " solve '" + model + "' -o '" + lit.string() + "' --report '" + report.string() + "' -q " +
@@ -195,7 +225,10 @@ int main(int argc, char** argv) {
               reference.size(), runs);
   std::printf("%-24s %9s %9s %9s %9s %9s %7s %9s %10s\n", "configuration", "mean", "max", "floor", "ceiling",
               "estimate", "shots", "elements", "seconds");
-  double seconds_of[3] = {0, 0, 0};
+  // What the estimate estimates, measured: the area-weighted error over the whole room
+  // (walls too, tests/data/globillum_room_walls_reference.txt) relative to its mean.
+  std::vector<std::string> whole_room_lines;
+  std::vector<double> seconds_of(configs.size(), 0.0);
   for (std::size_t c = 0; c < configs.size(); ++c) {
     std::vector<double> seconds;
     nlohmann::json last;
@@ -204,12 +237,26 @@ int main(int argc, char** argv) {
       seconds.push_back(last["seconds"].get<double>());
     }
     const Accuracy a = compare(lit, reference);
+    const Accuracy all = compare(lit, whole_room);
+    const double estimate = last["estimated_error"]["total"].get<double>();
+    char line[256];
+    std::snprintf(line, sizeof line, "%-24s %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.2fx %8.2fx\n", configs[c].name.c_str(),
+                  100 * all.area_weighted, 100 * all.mean, 100 * all.max, 100 * estimate, estimate / all.area_weighted,
+                  estimate / a.mean);
+    whole_room_lines.push_back(line);
     seconds_of[c] = median(seconds);
     std::printf("%-24s %8.3f%% %8.3f%% %+8.3f%% %+8.3f%% %8.3f%% %7d %9d %10.3f\n", configs[c].name.c_str(),
                 100 * a.mean, 100 * a.max, 100 * a.floor_signed, 100 * a.ceiling_signed,
                 100 * last["estimated_error"]["total"].get<double>(), last["iterations"].get<int>(),
                 last["elements"].get<int>(), seconds_of[c]);
   }
+
+  std::printf("\nthe whole room (floor, ceiling and walls, %zu points), last run: the area-weighted error "
+              "(what the estimate estimates)\n",
+              whole_room.size());
+  std::printf("%-24s %9s %9s %9s %9s %9s %9s\n", "configuration", "weighted", "mean", "max", "estimate",
+              "est/wtd", "est/grid");
+  for (const std::string& line : whole_room_lines) std::printf("%s", line.c_str());
 
   // The obstructed room (two full-height partitions), once per quality: the goal is no
   // point above 3% (issue 27); its worst points lie in the partitions' penumbrae.

@@ -1,7 +1,8 @@
 // Writes the path-traced reference for the 1990 globillum comparison room: radiosity
-// and its standard error at the 480 comparison points (globillum_room.h).
+// and its standard error at the 480 comparison points (globillum_room.h), or with
+// --walls at the 384 points of its walls' grid.
 //
-//   box_reference OUTPUT [--obstructed] [--target REL] [--seed N] [--threads N]
+//   box_reference OUTPUT [--obstructed] [--walls] [--target REL] [--seed N] [--threads N]
 //
 // Every point is traced on its own (no use of the room's symmetries), so mirrored
 // points are independent estimates and can check each other. The file is written
@@ -23,7 +24,7 @@ namespace {
 
 int usage(const char* message) {
   std::fprintf(stderr,
-               "box_reference: %s\nusage: box_reference OUTPUT [--obstructed] [--target REL] [--seed N] "
+               "box_reference: %s\nusage: box_reference OUTPUT [--obstructed] [--walls] [--target REL] [--seed N] "
                "[--threads N]\n",
                message);
   return 2;
@@ -33,7 +34,7 @@ int usage(const char* message) {
 
 int main(int argc, char** argv) {
   std::string output, command = "box_reference";
-  bool obstructed = false;
+  bool obstructed = false, walls = false;
   ref::TraceOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -42,6 +43,8 @@ int main(int argc, char** argv) {
     try {
       if (arg == "--obstructed") {
         obstructed = true;
+      } else if (arg == "--walls") {
+        walls = true;
       } else if (arg == "--target" && has_value) {
         options.target_relative_error = std::stod(argv[++i]);
         command += std::string(" ") + argv[i];
@@ -64,7 +67,7 @@ int main(int argc, char** argv) {
   if (!(options.target_relative_error > 0)) return usage("--target must be positive");
 
   const ref::BoxScene scene = ref::globillum_room(obstructed);
-  const std::vector<ref::ReferencePoint> points = ref::globillum_points();
+  const std::vector<ref::ReferencePoint> points = walls ? ref::globillum_wall_points() : ref::globillum_points();
   std::vector<ref::SurfacePoint> at;
   for (const ref::ReferencePoint& p : points) at.push_back(p.at);
 
@@ -102,7 +105,7 @@ int main(int argc, char** argv) {
                "# seed %llu, target relative standard error %g, %d paths per replicate\n"
                "# %zu points, %lld paths (%lld to %lld per point), %.1f s on %d threads; worst relative standard "
                "error %.5f\n"
-               "# Ceiling points (4.75 or 5.25, 2.75 or 3.25) are the source's corners; B there is the ceiling's.\n"
+               "%s"
                "# surface x y z B(W/m^2) std_error(W/m^2)\n",
                obstructed ? ", obstructed" : "",
                obstructed ? "; partitions 0.1 m thick, full height, centred on x = 3 (y 3..6) and x = 7 (y 0..3), "
@@ -110,7 +113,10 @@ int main(int argc, char** argv) {
                           : "",
                command.c_str(), static_cast<unsigned long long>(options.seed), options.target_relative_error,
                options.paths_per_replicate, points.size(), static_cast<long long>(paths),
-               static_cast<long long>(fewest), static_cast<long long>(most), seconds, threads, worst);
+               static_cast<long long>(fewest), static_cast<long long>(most), seconds, threads, worst,
+               walls ? "# The walls' 0.5 m grid, 0.25 m in from their edges (globillum_wall_points()).\n"
+                     : "# Ceiling points (4.75 or 5.25, 2.75 or 3.25) are the source's corners; B there is the "
+                       "ceiling's.\n");
   for (std::size_t i = 0; i < points.size(); ++i) {
     const ref::Vec3& p = points[i].at.point;
     std::fprintf(file, "%s %.2f %.2f %.2f %.7g %.3g\n", points[i].surface.c_str(), p.x, p.y, p.z, b[i].value,

@@ -24,4 +24,19 @@ std::vector<ReferencePoint> globillum_points() {
   return points;
 }
 
+std::vector<ReferencePoint> globillum_wall_points() {
+  std::vector<ReferencePoint> points;
+  for (const double y : {0.0, 6.0})
+    for (int k = 0; k < 6; ++k)
+      for (int i = 0; i < 20; ++i)
+        points.push_back({y == 0 ? "wall_y0" : "wall_y6",
+                          {{0.25 + 0.5 * i, y, 0.25 + 0.5 * k}, {0, y == 0 ? 1.0 : -1.0, 0}}});
+  for (const double x : {0.0, 10.0})
+    for (int k = 0; k < 6; ++k)
+      for (int j = 0; j < 12; ++j)
+        points.push_back({x == 0 ? "wall_x0" : "wall_x10",
+                          {{x, 0.25 + 0.5 * j, 0.25 + 0.5 * k}, {x == 0 ? 1.0 : -1.0, 0, 0}}});
+  return points;
+}
+
 }  // namespace dynrad_test::reference

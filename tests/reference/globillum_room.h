@@ -18,7 +18,7 @@ namespace dynrad_test::reference {
 BoxScene globillum_room(bool obstructed);
 
 struct ReferencePoint {
-  std::string surface;  // "floor" or "ceiling"
+  std::string surface;  // "floor", "ceiling", "wall_y0", "wall_y6", "wall_x0" or "wall_x10"
   SurfacePoint at;
 };
 
@@ -27,5 +27,12 @@ struct ReferencePoint {
 // x fastest: 240 per surface. Four ceiling points, (4.75 or 5.25, 2.75 or 3.25), are
 // the source's corners: its edges belong to the ceiling, so B there is the ceiling's.
 std::vector<ReferencePoint> globillum_points();
+
+// The four walls on the same 0.5 m grid, 0.25 m in from every edge (x or y fastest,
+// then z): the long walls y = 0 and y = 6 (20 x 6 points each), then the short walls
+// x = 0 and x = 10 (12 x 6 each), 384 in all, normals into the room. With the floor's
+// and ceiling's, every point stands for 0.25 m^2 of the room's 216 m^2 (less the
+// source's 0.25), so the area-weighted error over all of it can be measured.
+std::vector<ReferencePoint> globillum_wall_points();
 
 }  // namespace dynrad_test::reference
