@@ -41,9 +41,12 @@ std::vector<ReferencePoint> globillum_reference(const std::string& file = "globi
     std::string surface;
     double x, y, z, b, sigma;
     f >> surface >> x >> y >> z >> b >> sigma;
-    const bool floor = surface == "floor";
-    if (!floor && (x == 4.75 || x == 5.25) && (y == 2.75 || y == 3.25)) continue;
-    out.push_back({Vec3d(x, y, z), Vec3d(0, 0, floor ? 1 : -1), b, sigma});
+    if (surface == "ceiling" && (x == 4.75 || x == 5.25) && (y == 2.75 || y == 3.25)) continue;
+    // The normal into the room, from the surface's name (tests/reference/globillum_room.h).
+    const Vec3d normal(surface == "wall_x0" ? 1 : surface == "wall_x10" ? -1 : 0,
+                       surface == "wall_y0" ? 1 : surface == "wall_y6" ? -1 : 0,
+                       surface == "floor" ? 1 : surface == "ceiling" ? -1 : 0);
+    out.push_back({Vec3d(x, y, z), normal, b, sigma});
   }
   return out;
 }
@@ -88,6 +91,20 @@ double reference_noise(const std::vector<ReferencePoint>& reference) {
   return std::sqrt(2 / M_PI) * sum / static_cast<double>(reference.size());
 }
 
+// What the estimate estimates: sum |B - reference| over sum reference, every point
+// standing for the same area (the whole room's 0.5 m grid).
+double area_weighted_error(Solved& s, const std::vector<ReferencePoint>& reference) {
+  const rad::Solver::Output out = s.solver->output();
+  double difference = 0, total = 0;
+  for (const ReferencePoint& p : reference) {
+    const auto b = rad::probe(*s.scene.mesh, out.split, out.radiosity, p.point, p.normal);
+    EXPECT_TRUE(b.has_value());
+    difference += b ? std::abs(b->g - p.radiosity) : p.radiosity;
+    total += p.radiosity;
+  }
+  return difference / total;
+}
+
 double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>& reference, double* worst = nullptr) {
   const rad::Solver::Output out = s.solver->output();
   double sum = 0, largest = 0;
@@ -104,12 +121,17 @@ double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>
 
 // Every quality stops by its error target, delivers it, and its estimate is at least
 // the error measured against the path tracer, less what the tracer's own noise adds
-// (about 0.08% here). The normal quality (the default) is
+// (about 0.08% here): the grid's mean relative error, and what the estimate estimates,
+// the area-weighted error over the whole room (walls too). That one is 0.59%, 0.21%
+// and 0.10% against estimates of 2.9%, 0.97% and 0.29%: bench/README.md says why. The normal quality (the default) is
 // within the issue's goal of 0.5% on average (the 2.6% at single points, the ceiling's
 // corners, is in bench/README.md).
 TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
   const std::vector<ReferencePoint> reference = globillum_reference();
   ASSERT_EQ(reference.size(), 476u);
+  std::vector<ReferencePoint> whole_room = reference;
+  for (const ReferencePoint& p : globillum_reference("globillum_room_walls_reference.txt")) whole_room.push_back(p);
+  ASSERT_EQ(whole_room.size(), 476u + 384u);
   const double noise = reference_noise(reference);
   EXPECT_LT(noise, 0.001);
   double previous = 1;
@@ -121,6 +143,7 @@ TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
     EXPECT_EQ(s.report.stopped_by, "error target");
     EXPECT_LE(estimated, rad::quality_preset(q).error_target);
     EXPECT_GE(estimated + noise, measured);
+    EXPECT_GE(estimated + noise, area_weighted_error(s, whole_room));
     EXPECT_LT(measured, previous);  // a higher quality is more accurate
     if (q == Quality::normal) {
       EXPECT_LT(measured, 0.005);
