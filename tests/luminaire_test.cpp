@@ -49,7 +49,8 @@ struct Lit {
 // the settings are applied, `tweak_refine` the refinement settings.
 Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
           const std::function<void(rad::SolveOptions&)>& tweak = {},
-          const std::function<void(rad::RefineSettings&)>& tweak_refine = {}) {
+          const std::function<void(rad::RefineSettings&)>& tweak_refine = {},
+          rad::Quality quality = rad::Quality::normal) {
   Lit lit;
   lit.scene = load_soup(b.soup(), "luminaire test");
   SceneMesh& mesh = *lit.scene.mesh;
@@ -59,7 +60,9 @@ Lit solve(const SceneBuilder& b, std::vector<Luminaire> luminaires,
   options.ambient_display = true;
   options.emission_scale = rad::kLumensPerWatt;
   options.min_reflectance = 1e-4;
-  const rad::AppliedSettings applied = rad::apply_settings(mesh, rad::SettingsRequest{}, refine, options);
+  rad::SettingsRequest request;
+  request.quality = quality;
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options);
   if (tweak) tweak(options);
   if (tweak_refine) tweak_refine(refine);
   make_patches(mesh, applied.patch_size);
@@ -115,6 +118,36 @@ TEST(Luminaire, PointSourceOverAFloorGivesICosCubedOverHSquared) {
   // Half of 4 pi 100 lm goes up and leaves; of the rest, all but what falls beyond the
   // floor's edge lands, and half of that is reflected up and leaves.
   EXPECT_NEAR(lit.report.energy.emitted.luminance(), 400 * M_PI, 1e-9);
+}
+
+// The report's estimate against what it estimates, the area-weighted error (here of
+// the one surface) measured against the closed form: at every quality at least the
+// error and at most twice it (issue 27). A 10 m plate under a 100 cd point source 2.5 m
+// over its centre, on its 0.5 m grid (400 points, each the same area). Measured
+// 2026-12-05: draft 0.49% estimated / 0.29% measured, normal 0.17 / 0.10%, high
+// 0.089 / 0.069%.
+TEST(Luminaire, EstimatedErrorBoundsTheMeasuredOneAtEveryQuality) {
+  SceneBuilder b;
+  b.rectangle(0, 0, 10, 10, 0, +1, b.material("floor", 0.5));
+  for (const rad::Quality quality : {rad::Quality::draft, rad::Quality::normal, rad::Quality::high}) {
+    SCOPED_TRACE(rad::quality_name(quality));
+    const Lit lit = solve(b, {point_source({5, 5, 2.5}, 100)}, {}, {}, quality);
+    double difference = 0, total = 0;
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) {
+        const Vec3d p(0.25 + 0.5 * i, 0.25 + 0.5 * j, 0);
+        const double d2 = (p[0] - 5) * (p[0] - 5) + (p[1] - 5) * (p[1] - 5) + 2.5 * 2.5;
+        const double exact = 100 * 2.5 / std::pow(d2, 1.5);
+        difference += std::abs(lit.illuminance(p, {0, 0, 1}) - exact);
+        total += exact;
+      }
+    const double measured = difference / total, estimated = lit.report.estimated_error.total();
+    std::printf("%s: estimated %.3f%%, measured %.3f%%\n", rad::quality_name(quality), 100 * estimated,
+                100 * measured);
+    EXPECT_GT(measured, 0.0);
+    EXPECT_GE(estimated, measured);
+    EXPECT_LE(estimated, 2 * measured);
+  }
 }
 
 // A Lambertian (cosine-law) luminaire: I = I0 cos(gamma) downwards, so at a floor
