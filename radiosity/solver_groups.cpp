@@ -136,8 +136,11 @@ double Solver::group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d&
         // penumbra's thin strip of a small area light could be hit by 1 ray of 66
         // where 6 were due.)
         const double at = (i + rng.uniform()) / rows * total;
-        const std::size_t k =
-            pick_by_weight(sender_members_.size(), at, [&](std::size_t m) { return std::abs(term[m]); });
+        // The member whose share holds `at`: the last whose share begins at or before it
+        // (one with no share has none to hold it).
+        std::size_t k = static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), at) - before.begin());
+        k = k > 0 ? k - 1 : 0;
+        while (k > 0 && !(std::abs(term[k]) > 0)) --k;
         const double u = term[k] != 0 ? std::clamp((at - before[k]) / std::abs(term[k]), 0.0, 1.0) : 0.5;
         const Vec3d t = point_on_triangle(sender_members_[k].corners, u, (j + rng.uniform()) / columns);
         if (OpenMesh::dot(n, t - x) > 0) {
