@@ -95,7 +95,8 @@ struct Accuracy {
   std::size_t worst = 0;  // the reference point with the largest error
 };
 
-Accuracy compare(const fs::path& lit, const std::vector<ReferencePoint>& reference) {
+// The lit mesh's green radiosity at the reference points, by `dynrad probe`.
+std::vector<double> probe(const fs::path& lit, const std::vector<ReferencePoint>& reference) {
   const fs::path points = kWork / "points.txt", probed = kWork / "probe.json";
   {
     std::ofstream out(points);
@@ -108,15 +109,23 @@ Accuracy compare(const fs::path& lit, const std::vector<ReferencePoint>& referen
   }
   run(kDynrad + " probe '" + lit.string() + "' --points '" + points.string() + "' --json -o '" + probed.string() + "'");
   const nlohmann::json j = read_json(probed);
+  std::vector<double> values;
+  for (std::size_t i = 0; i < reference.size(); ++i) values.push_back(j["points"][i]["radiosity"][1].get<double>());
+  return values;
+}
+
+// The accuracy of `values` (probe()) over the first `count` reference points.
+Accuracy accuracy(const std::vector<double>& values, const std::vector<ReferencePoint>& reference,
+                  std::size_t count) {
   Accuracy a;
   std::size_t floors = 0, ceilings = 0;
   double difference_sum = 0, reference_sum = 0;
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const double b = j["points"][i]["radiosity"][1].get<double>();
+  for (std::size_t i = 0; i < count; ++i) {
+    const double b = values[i];
     const double e = (b - reference[i].b) / reference[i].b;
     difference_sum += std::abs(b - reference[i].b);
     reference_sum += reference[i].b;
-    a.mean += std::abs(e) / static_cast<double>(reference.size());
+    a.mean += std::abs(e) / static_cast<double>(count);
     if (std::abs(e) > a.max) {
       a.max = std::abs(e);
       a.worst = i;
@@ -236,8 +245,10 @@ int main(int argc, char** argv) {
       last = solve(DYNRAD_SAMPLES_DIR "/globillum_room.obj", configs[c]);
       seconds.push_back(last["seconds"].get<double>());
     }
-    const Accuracy a = compare(lit, reference);
-    const Accuracy all = compare(lit, whole_room);
+    // The whole room's points begin with the floor-and-ceiling grid's: one probe for both.
+    const std::vector<double> values = probe(lit, whole_room);
+    const Accuracy a = accuracy(values, whole_room, reference.size());
+    const Accuracy all = accuracy(values, whole_room, whole_room.size());
     const double estimate = last["estimated_error"]["total"].get<double>();
     char line[256];
     std::snprintf(line, sizeof line, "%-24s %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.2fx %8.2fx\n", configs[c].name.c_str(),
@@ -269,7 +280,7 @@ int main(int argc, char** argv) {
                 "seconds");
     for (const Config& c : {Config{"defaults (no options)", ""}, Config{"high", "--quality high"}}) {
       const nlohmann::json r = solve(DYNRAD_SAMPLES_DIR "/globillum_room_obstructed.obj", c);
-      const Accuracy a = compare(lit, obstructed);
+      const Accuracy a = accuracy(probe(lit, obstructed), obstructed, obstructed.size());
       const ReferencePoint& w = obstructed[a.worst];
       std::printf("%-24s %8.3f%% %8.3f%%   %-5s (%5.2f, %5.2f) %8.3f%% %9d %10.3f\n", c.name.c_str(), 100 * a.mean,
                   100 * a.max, w.floor ? "floor" : "ceil", w.x, w.y, 100 * r["estimated_error"]["total"].get<double>(),
