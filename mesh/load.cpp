@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/import.h"
+#include "mesh/openings.h"
 #include "mesh/polygon_triangulation.h"
 
 #include <cmath>
@@ -134,6 +135,7 @@ LoadedScene load_soup(const PolygonSoup& soup, const std::string& path, const Cl
   scene.mesh = std::make_unique<SceneMesh>(clean);
   check_magnitudes(path, *scene.mesh);
   scene.simplify = simplify_flat_regions(*scene.mesh, simplify);
+  scene.openings = find_openings(scene.mesh->mesh());
   return scene;
 }
 

@@ -20,6 +20,8 @@ struct LoadedScene {
   // mesh's rays; light from outside (sky, sun) crossing them is scaled by their
   // transmittance.
   std::vector<GlazingTriangle> glazing;
+  // The holes light from outside comes in through (mesh/openings.h), triangulated.
+  std::vector<std::array<Vec3d, 3>> openings;
   CleanupReport cleanup;
   SimplifyReport simplify;  // all zero-change unless SimplifyOptions::enabled
   std::size_t input_files = 0;

@@ -13,29 +13,104 @@ namespace dynrad::rad {
 
 namespace {
 
-std::vector<Vec3d> glazing_points(const std::vector<GlazingTriangle>& triangles) {
+std::vector<Vec3d> pane_points(const std::vector<std::array<Vec3d, 3>>& panes) {
   std::vector<Vec3d> points;
-  for (const GlazingTriangle& t : triangles)
-    for (const Vec3d& c : t.corners) points.push_back(c);
+  for (const auto& t : panes)
+    for (const Vec3d& c : t) points.push_back(c);
   return points;
 }
 
-std::vector<std::array<std::uint32_t, 3>> glazing_indices(std::size_t count) {
+std::vector<std::array<std::uint32_t, 3>> pane_indices(std::size_t count) {
   std::vector<std::array<std::uint32_t, 3>> out(count);
   for (std::size_t i = 0; i < count; ++i)
     out[i] = {static_cast<std::uint32_t>(3 * i), static_cast<std::uint32_t>(3 * i + 1), static_cast<std::uint32_t>(3 * i + 2)};
   return out;
 }
 
+// Distance along `direction` from `origin` to the plane of triangle c (negative behind).
+double plane_distance(const std::array<Vec3d, 3>& c, const Vec3d& origin, const Vec3d& direction) {
+  const Vec3d n = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
+  const double denominator = OpenMesh::dot(n, direction);
+  return denominator == 0 ? -1 : OpenMesh::dot(n, c[0] - origin) / denominator;
+}
+
+// A triangle seen from a point, as the spherical triangle of unit directions (a, b, c)
+// to its corners, and Arvo's (1995) map from the unit square onto it, uniform in solid
+// angle: the first coordinate picks the share of the area cut off along the edge from
+// a, the second the point along the arc from b.
+struct SphericalTriangle {
+  Vec3d a, b, c;
+  double area = 0;  // solid angle (sr)
+  double alpha = 0, cos_alpha = 1, sin_alpha = 0, cos_ab = 1;
+  Vec3d c_off_a;    // the unit tangent at a towards c
+
+  SphericalTriangle(const Vec3d& a_, const Vec3d& b_, const Vec3d& c_) : a(a_), b(b_), c(c_) {
+    // Van Oosterom and Strackee's solid angle: tan(area / 2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
+    area = 2 * std::atan2(std::abs(OpenMesh::dot(a, OpenMesh::cross(b, c))),
+                          1 + OpenMesh::dot(a, b) + OpenMesh::dot(b, c) + OpenMesh::dot(c, a));
+    const Vec3d to_b = b - a * OpenMesh::dot(a, b);
+    const Vec3d to_c = c - a * OpenMesh::dot(a, c);
+    if (!(to_b.norm() > 0) || !(to_c.norm() > 0)) {
+      area = 0;
+      return;
+    }
+    c_off_a = to_c.normalized();
+    cos_alpha = std::clamp(OpenMesh::dot(to_b.normalized(), c_off_a), -1.0, 1.0);
+    alpha = std::acos(cos_alpha);
+    sin_alpha = std::sin(alpha);
+    cos_ab = OpenMesh::dot(a, b);
+  }
+
+  Vec3d sample(double u, double v) const {
+    const double cut = u * area - alpha;  // the cut-off part's area, less alpha
+    const double s = std::sin(cut), t = std::cos(cut);
+    const double p = t - cos_alpha, q = s + sin_alpha * cos_ab;
+    const double denominator = (q * s + p * t) * sin_alpha;
+    const double w = denominator != 0 ? std::clamp(((q * t - p * s) * cos_alpha - q) / denominator, -1.0, 1.0) : 1.0;
+    // The cut's third corner, on the arc from a to c; then a point on the arc from b to it.
+    const Vec3d c_cut = a * w + c_off_a * std::sqrt(std::max(0.0, 1 - w * w));
+    const double z = 1 - v * (1 - OpenMesh::dot(c_cut, b));
+    const Vec3d off_b = c_cut - b * OpenMesh::dot(c_cut, b);
+    const double off = off_b.norm();
+    if (!(off > 0)) return b;
+    return (b * z + off_b * (std::sqrt(std::max(0.0, 1 - z * z)) / off)).normalized();
+  }
+};
+
 }  // namespace
 
-Glazing::Glazing(const std::vector<GlazingTriangle>& triangles) {
+Glazing::Glazing(const std::vector<GlazingTriangle>& triangles, const std::vector<std::array<Vec3d, 3>>& openings) {
   for (const GlazingTriangle& t : triangles) {
     corners_.push_back(t.corners);
     transmittance_.push_back(t.transmittance.luminance());
   }
-  if (!triangles.empty())
-    caster_ = std::make_unique<RayCaster>(glazing_points(triangles), glazing_indices(triangles.size()));
+  glass_ = corners_.size();
+  if (!openings.empty()) {
+    // An opening is covered when glass lies in its plane across its centroid.
+    std::unique_ptr<RayCaster> glass;
+    if (!corners_.empty()) glass = std::make_unique<RayCaster>(pane_points(corners_), pane_indices(corners_.size()));
+    for (const auto& o : openings) {
+      const Vec3d normal = OpenMesh::cross(o[1] - o[0], o[2] - o[0]);
+      const double size = std::max({(o[1] - o[0]).norm(), (o[2] - o[0]).norm(), (o[2] - o[1]).norm()});
+      if (!(normal.norm() > 0)) continue;
+      const Vec3d m = normal.normalized();
+      const Vec3d centroid = (o[0] + o[1] + o[2]) / 3.0;
+      bool covered = false;
+      if (glass) {
+        const Vec3d from = centroid + m * (1e-3 * size);
+        const long hit = glass->first_hit(from, -m);
+        covered = hit >= 0 && plane_distance(corners_[static_cast<std::size_t>(hit)], from, -m) < 2e-3 * size;
+      }
+      if (covered) continue;
+      corners_.push_back(o);
+      transmittance_.push_back(1.0);
+    }
+  }
+  if (!corners_.empty()) caster_ = std::make_unique<RayCaster>(pane_points(corners_), pane_indices(corners_.size()));
+}
+
+long Glazing::first(const Vec3d& origin, const Vec3d& direction) const {
+  return caster_ ? caster_->first_hit(origin, direction) : -1;
 }
 
 Glazing::~Glazing() = default;
@@ -50,10 +125,8 @@ double Glazing::along(const Vec3d& origin, const Vec3d& direction) const {
     const long hit = caster_->first_hit(o, direction);
     if (hit < 0) break;
     const auto& c = corners_[static_cast<std::size_t>(hit)];
-    const Vec3d n = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
-    const double denominator = OpenMesh::dot(n, direction);
-    if (denominator == 0) break;
-    const double distance = OpenMesh::dot(n, c[0] - o) / denominator;
+    if (OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), direction) == 0) break;
+    const double distance = plane_distance(c, o, direction);
     t *= transmittance_[static_cast<std::size_t>(hit)];
     if (!(t > 0)) return 0;
     const double size = std::max({(c[1] - c[0]).norm(), (c[2] - c[0]).norm(), 1e-300});
@@ -61,6 +134,84 @@ double Glazing::along(const Vec3d& origin, const Vec3d& direction) const {
   }
   return t;
 }
+
+namespace {
+
+// The sky's illuminance at x facing n through the windows and openings: each pane a
+// portal, integrated over the solid angle it covers, by the centres of strata of
+// Arvo's map (the same directions for a pane at every point: no noise). A direction
+// counts for the first pane it crosses only, and only when nothing of the model stops
+// it; the directions of the hemisphere that cross a pane are left out there. So the
+// two parts add up to the whole sky, and a pane seen as a sliver from close beside it
+// gets as many directions as one seen face on. Only panes that cover at least
+// `least` sr are portals (`portals`, in pane order); the hemisphere keeps the
+// directions through the others, as through no pane. `budget` directions are shared
+// among the portals by their solid angle, at least 4 each.
+struct Portal {
+  std::size_t pane;
+  SphericalTriangle triangle;
+};
+
+std::vector<Portal> portals_at(const Glazing& glazing, const Vec3d& x, const Vec3d& n, double least) {
+  std::vector<Portal> out;
+  for (std::size_t i = 0; i < glazing.size(); ++i) {
+    const auto& c = glazing.pane(i);
+    // A cheap bound first: the cap of the pane's bounding sphere.
+    const Vec3d centre = (c[0] + c[1] + c[2]) / 3.0;
+    const double radius = std::max({(c[0] - centre).norm(), (c[1] - centre).norm(), (c[2] - centre).norm()});
+    const double distance = (centre - x).norm();
+    if (distance > radius && 2 * M_PI * (1 - std::sqrt(1 - (radius / distance) * (radius / distance))) < least) continue;
+    Vec3d to[3];
+    double height = 0, size = 0;
+    for (int k = 0; k < 3; ++k) {
+      to[k] = c[k] - x;
+      height = std::max(height, OpenMesh::dot(to[k], n));
+      size = std::max(size, (c[k] - c[(k + 1) % 3]).norm());
+    }
+    if (height <= 1e-9 * size) continue;  // at or below x's horizon
+    const Vec3d normal = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
+    if (std::abs(OpenMesh::dot(normal.normalized(), to[0])) <= 1e-9 * size) continue;  // x in its plane
+    SphericalTriangle t(to[0].normalized(), to[1].normalized(), to[2].normalized());
+    if (!(t.area >= least)) continue;
+    out.push_back({i, t});
+  }
+  return out;
+}
+
+bool is_portal(const std::vector<Portal>& portals, long pane) {
+  if (pane < 0) return false;
+  const auto at = std::lower_bound(portals.begin(), portals.end(), static_cast<std::size_t>(pane),
+                                   [](const Portal& p, std::size_t i) { return p.pane < i; });
+  return at != portals.end() && at->pane == static_cast<std::size_t>(pane);
+}
+
+void portal_sky(const Visibility& visibility, const Daylight& day, const std::vector<Portal>& panes, const Vec3d& x,
+                const Vec3d& n, int budget, double& seen, double& below) {
+  const Glazing& glazing = *day.glazing;
+  double total = 0;
+  for (const Portal& p : panes) total += p.triangle.area;
+  for (const Portal& p : panes) {
+    const int wanted = std::max(4, static_cast<int>(std::lround(budget * p.triangle.area / total)));
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(wanted))));
+    double sum = 0, sum_below = 0;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        const Vec3d d = p.triangle.sample((i + 0.5) / side, (j + 0.5) / side);
+        const double cosine = OpenMesh::dot(d, n);
+        if (cosine <= 0) continue;
+        if (glazing.first(x, d) != static_cast<long>(p.pane)) continue;
+        if (visibility.trace(x, n, d) != Visibility::Hit::nothing) continue;
+        const double value = day.sky.luminance(d) * glazing.along(x, d) * cosine;
+        sum += value;
+        if (OpenMesh::dot(d, day.sky.up) <= 0) sum_below += value;
+      }
+    const double weight = p.triangle.area / (static_cast<double>(side) * side);
+    seen += sum * weight;
+    below += sum_below * weight;
+  }
+}
+
+}  // namespace
 
 double daylight_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
                             double* unoccluded, int side, double* ground) {
@@ -95,6 +246,10 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     const double r = std::sqrt(u), phi = 2 * M_PI * v;
     return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u))).normalized();
   };
+  // Panes that cover at least one hemisphere stratum's share (pi / k^2 sr) are
+  // portals; smaller ones (far, or many) are left to the hemisphere's directions.
+  std::vector<Portal> portals;
+  if (visibility && day.glazing) portals = portals_at(*day.glazing, x, n, M_PI / (static_cast<double>(k) * k));
   struct Sample {
     double seen = 0, below = 0;
     int code = -1;  // -1 blocked; else the transmittance it crossed, in millionths
@@ -103,6 +258,8 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     Sample out;
     const Vec3d d = direction(u, v);
     const double L = day.sky.luminance(d);
+    // Directions through a portal are the portals' (below).
+    if (!portals.empty() && is_portal(portals, day.glazing->first(x, d))) return out;
     if (visibility->trace(x, n, d) != Visibility::Hit::nothing) return out;
     const double through = day.glazing ? day.glazing->along(x, d) : 1.0;
     const bool under = OpenMesh::dot(d, day.sky.up) <= 0;
@@ -164,8 +321,10 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     day.unobstructed.emplace(key, open * scale);
     return open * scale;
   }
-  if (ground) *ground = below * scale;
-  return seen * scale;
+  double through_seen = 0, through_below = 0;
+  if (!portals.empty()) portal_sky(*visibility, day, portals, x, n, k * k, through_seen, through_below);
+  if (ground) *ground = below * scale + through_below;
+  return seen * scale + through_seen;
 }
 
 }  // namespace dynrad::rad

@@ -27,7 +27,8 @@ void check_keys(const std::string& path, const json& object, const std::string& 
 
 }  // namespace
 
-std::vector<Luminaire> read_daylight(const std::string& path, const std::vector<GlazingTriangle>& glazing) {
+std::vector<Luminaire> read_daylight(const std::string& path, const std::vector<GlazingTriangle>& glazing,
+                                     const std::vector<std::array<Vec3d, 3>>& openings) {
   const json sky = scene_section(path, "sky");
   if (sky.is_null()) return {};
   auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
@@ -144,10 +145,13 @@ std::vector<Luminaire> read_daylight(const std::string& path, const std::vector<
     if (r != std::floor(r) || r < 4 || r > 256) fail("sky.rays must be a whole number from 4 to 256 (rays x rays per point).");
     day->side = static_cast<int>(r);
   }
-  if (!glazing.empty()) day->glazing = std::make_shared<Glazing>(glazing);
-  day->sky_summary = model.describe() + fmt::format(", ground reflectance {:.3g}; {}x{} directions per point{}",
+  if (!glazing.empty() || !openings.empty()) day->glazing = std::make_shared<Glazing>(glazing, openings);
+  day->sky_summary = model.describe() + fmt::format(", ground reflectance {:.3g}; {}x{} directions per point{}{}",
                                                     ground_reflectance, day->side, day->side,
-                                                    glazing.empty() ? "" : fmt::format(", {} glazing triangles", glazing.size()));
+                                                    glazing.empty() ? "" : fmt::format(", {} glazing triangles", glazing.size()),
+                                                    day->glazing && day->glazing->size() > day->glazing->glass_count()
+                                                        ? fmt::format(", {} opening triangles", day->glazing->size() - day->glazing->glass_count())
+                                                        : "");
   std::vector<Luminaire> out;
   if (day->direct_normal > 0) {
     Luminaire sun;

@@ -85,7 +85,7 @@ int run_grid(const GridOptions& options) {
   scene.triangles = lit.triangles;
   scene.radiosity = lit.radiosity;
   scene.photometric = lit.photometric;
-  scene.luminaires = rad::read_daylight(options.model, loaded.glazing);
+  scene.luminaires = rad::read_daylight(options.model, loaded.glazing, loaded.openings);
   for (rad::Luminaire& l : rad::read_luminaires(options.model)) scene.luminaires.push_back(std::move(l));
   // Each lit triangle's emission: the model's material where its centroid lies.
   const double scale = lit.photometric ? rad::kLumensPerWatt : 1.0;

@@ -52,7 +52,7 @@ int run_info(const InfoOptions& options) {
   double luminaire_flux = 0;
   for (const rad::Luminaire& l : luminaires) luminaire_flux += l.flux();
   // Daylight: the scene's sky and sun, and its glazing.
-  const std::vector<rad::Luminaire> daylight = rad::read_daylight(options.load.input, scene.glazing);
+  const std::vector<rad::Luminaire> daylight = rad::read_daylight(options.load.input, scene.glazing, scene.openings);
 
   // Per-material statistics over the cleaned triangles.
   struct Usage {
@@ -165,6 +165,7 @@ int run_info(const InfoOptions& options) {
     j["daylight"] = nlohmann::json::array();
     for (const rad::Luminaire& l : daylight) j["daylight"].push_back(l.describe());
     j["glazing_triangles"] = scene.glazing.size();
+    j["opening_triangles"] = scene.openings.size();
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), luminaire_warnings.begin(), luminaire_warnings.end());
     j["warnings"] = warnings;
@@ -223,6 +224,10 @@ int run_info(const InfoOptions& options) {
   if (!scene.glazing.empty())
     std::cout << fmt::format("glazing         {} triangles (materials with a transmittance: windows, not lit)\n",
                              scene.glazing.size());
+  if (!scene.openings.empty())
+    std::cout << fmt::format("openings        {} triangles (holes daylight comes in through, found where the mesh's "
+                             "boundary is flat and not a surface's outline)\n",
+                             scene.openings.size());
   if (mesh.emitting_area() == 0 && luminaires.empty() && daylight.empty())
     std::cout << "note            no emitting faces, no luminaires and no sky: a solve would have no light.\n";
   for (const auto& w : scene.warnings) spdlog::warn("{}", w);

@@ -207,7 +207,7 @@ int run_solve(SolveCliOptions& options) {
                  scene.simplify.faces_after, scene.simplify.seconds);
   SceneMesh& mesh = *scene.mesh;
   // Daylight (the scene's "sky": the sun, then the sky) shoots first, then luminaires.
-  std::vector<rad::Luminaire> luminaires = rad::read_daylight(options.load.input, scene.glazing);
+  std::vector<rad::Luminaire> luminaires = rad::read_daylight(options.load.input, scene.glazing, scene.openings);
   const bool daylight = !luminaires.empty();
   for (rad::Luminaire& l : rad::read_luminaires(options.load.input)) luminaires.push_back(std::move(l));
   if (!scene.glazing.empty())

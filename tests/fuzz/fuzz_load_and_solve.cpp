@@ -127,7 +127,7 @@ void load_and_solve(const std::string& path) {
   // here a scene may name downlight.ies, written beside it).
   std::vector<rad::Luminaire> luminaires = rad::read_luminaires(path);
   // The sky section is read and checked (its shots cost too many rays for a fuzz run).
-  (void)rad::read_daylight(path, scene.glazing);
+  (void)rad::read_daylight(path, scene.glazing, scene.openings);
   if (luminaires.size() > 16) luminaires.resize(16);  // arrays: a few shots cover the paths
   if (!(mesh.emitting_area() > 0) && luminaires.empty()) return;  // the command line refuses this (exit 2)
   // Coarse patches and a few shots: the point is every code path, not accuracy.
