@@ -166,10 +166,12 @@ TEST(Daylight, GlassScalesTheSkyByItsTransmittance) {
   ASSERT_EQ(glazed_room.glazing.size(), 2u);  // the pane, triangulated
   EXPECT_EQ(open_room.mesh->face_count(), glazed_room.mesh->face_count());  // not part of the lit mesh
   const rad::Visibility a(*open_room.mesh), b(*glazed_room.mesh);
-  // The opening is the open room's portal, and the pane the glazed room's (the
-  // opening it covers is left out): the same directions.
+  // The open room's portal is the pane's triangles as an opening, and the glazed
+  // room's the pane (the opening it covers is left out): the same directions.
   ASSERT_EQ(open_room.openings.size(), 2u);
-  const auto open_sky = sky_from(dir, R"({"type": "cie_overcast"})", {}, open_room.openings);
+  std::vector<std::array<Vec3d, 3>> pane;
+  for (const GlazingTriangle& t : glazed_room.glazing) pane.push_back(t.corners);
+  const auto open_sky = sky_from(dir, R"({"type": "cie_overcast"})", {}, pane);
   const auto glazed_sky = sky_from(dir, R"({"type": "cie_overcast"})", glazed_room.glazing, glazed_room.openings);
   for (const Vec3d& p : {Vec3d(2, 2, 0), Vec3d(1, 3, 0), Vec3d(3.9, 2, 1.5)}) {
     const Vec3d n = p[0] > 3.8 ? Vec3d(-1, 0, 0) : Vec3d(0, 0, 1);

@@ -74,5 +74,57 @@ TEST(Openings, AHoleInAWallAnOpenTopAndADoorAreFound) {
   EXPECT_NEAR(area(door), 2.0, 1e-9);
 }
 
+TEST(Openings, HolesThatSurfacesBehindMeetAreFoundAndOnesClosedInFrontAreNot) {
+  // The wall with its 2 x 1 hole, and an overhang outside along the hole's head, wider
+  // than the hole: where it meets the wall beside the hole, cleanup leaves slits.
+  SceneBuilder wall;
+  const std::uint32_t m = wall.material("grey", 0.5);
+  auto facade = [&](double x0, double z0, double x1, double z1) {  // facing +y
+    wall.quad(Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0), m);
+  };
+  facade(0, 0, 1, 3);
+  facade(3, 0, 4, 3);
+  facade(1, 0, 3, 1);
+  facade(1, 2, 3, 3);
+  wall.quad(Vec3d(0, -1, 2), Vec3d(0, 0, 2), Vec3d(4, 0, 2), Vec3d(4, -1, 2), m);  // facing down
+  EXPECT_NEAR(area(load_soup(wall.soup(), "overhang").openings), 2.0, 1e-9);
+
+  // A wall 0.3 m thick with a 1 x 1 window hole lined by its reveals: the hole's inner
+  // outline, in the inner face's plane.
+  SceneBuilder thick;
+  const std::uint32_t g = thick.material("grey", 0.5);
+  auto inner = [&](double x0, double z0, double x1, double z1) {  // y = 0, facing +y
+    thick.quad(Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0), g);
+  };
+  auto outer = [&](double x0, double z0, double x1, double z1) {  // y = -0.3, facing -y
+    thick.quad(Vec3d(x0, -0.3, z0), Vec3d(x1, -0.3, z0), Vec3d(x1, -0.3, z1), Vec3d(x0, -0.3, z1), g);
+  };
+  inner(0, 0, 1, 3);
+  inner(2, 0, 3, 3);
+  inner(1, 0, 2, 1);
+  inner(1, 2, 2, 3);
+  outer(0, 0, 1, 3);
+  outer(2, 0, 3, 3);
+  outer(1, 0, 2, 1);
+  outer(1, 2, 2, 3);
+  // The reveals, facing into the hole.
+  thick.quad(Vec3d(1, -0.3, 1), Vec3d(1, 0, 1), Vec3d(1, 0, 2), Vec3d(1, -0.3, 2), g);  // +x
+  thick.quad(Vec3d(2, -0.3, 1), Vec3d(2, -0.3, 2), Vec3d(2, 0, 2), Vec3d(2, 0, 1), g);  // -x
+  thick.quad(Vec3d(1, -0.3, 1), Vec3d(2, -0.3, 1), Vec3d(2, 0, 1), Vec3d(1, 0, 1), g);  // +z
+  thick.quad(Vec3d(1, -0.3, 2), Vec3d(1, 0, 2), Vec3d(2, 0, 2), Vec3d(2, -0.3, 2), g);  // -z
+  const auto reveal = load_soup(thick.soup(), "thick wall").openings;
+  EXPECT_NEAR(area(reveal), 2.0, 1e-9);  // the inner outline and the outer one
+  for (const auto& t : reveal)
+    for (const Vec3d& c : t) EXPECT_TRUE(c[0] >= 1 - 1e-12 && c[0] <= 2 + 1e-12 && c[2] >= 1 - 1e-12 && c[2] <= 2 + 1e-12) << c;
+
+  // A 0.4 m square column standing through a floor: a hole in the floor, closed by the
+  // column in front of it. No opening.
+  SceneBuilder column;
+  const std::uint32_t c = column.material("grey", 0.5);
+  column.quad(Vec3d(0, 0, 0), Vec3d(4, 0, 0), Vec3d(4, 4, 0), Vec3d(0, 4, 0), c);
+  column.box(Vec3d(1.8, 1.8, 0), Vec3d(2.2, 2.2, 3), c, SceneBuilder::outward, {false, false, false, false, true, false});
+  EXPECT_TRUE(load_soup(column.soup(), "column").openings.empty());
+}
+
 }  // namespace
 }  // namespace dynrad

@@ -18,6 +18,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitInternal = 1;  // a bug: please report it
 constexpr int kExitBadInput = 2;  // unusable input, unwritable output, bad options
 constexpr int kExitInterrupted = 3;  // stopped by a signal; the current solution was written
+constexpr int kExitValidation = 4;   // validate: a case is over its goal
 
 Command add_info_command(CLI::App& app);
 Command add_clean_command(CLI::App& app);
@@ -27,6 +28,7 @@ Command add_plot_command(CLI::App& app);
 Command add_probe_command(CLI::App& app);
 Command add_grid_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
+Command add_validate_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

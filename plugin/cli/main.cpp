@@ -61,7 +61,8 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "Print only warnings and errors: no progress, no summary");
   std::map<CLI::App*, cli::Command> commands;
   for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command, cli::add_diff_command,
-                    cli::add_plot_command, cli::add_probe_command, cli::add_grid_command, cli::add_view_command}) {
+                    cli::add_plot_command, cli::add_probe_command, cli::add_grid_command, cli::add_view_command,
+                    cli::add_validate_command}) {
     auto run = add(app);
     commands[app.get_subcommands({}).back()] = run;
   }
