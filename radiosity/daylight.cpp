@@ -83,6 +83,7 @@ Glazing::Glazing(const std::vector<GlazingTriangle>& triangles, const std::vecto
   for (const GlazingTriangle& t : triangles) {
     corners_.push_back(t.corners);
     transmittance_.push_back(t.transmittance.luminance());
+    glass_panes_.emplace_back(transmittance_.back());
   }
   glass_ = corners_.size();
   if (!openings.empty()) {
@@ -106,6 +107,10 @@ Glazing::Glazing(const std::vector<GlazingTriangle>& triangles, const std::vecto
       transmittance_.push_back(1.0);
     }
   }
+  for (const auto& c : corners_) {
+    const Vec3d normal = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
+    normals_.push_back(normal.norm() > 0 ? normal.normalized() : Vec3d(0, 0, 1));
+  }
   if (!corners_.empty()) caster_ = std::make_unique<RayCaster>(pane_points(corners_), pane_indices(corners_.size()));
 }
 
@@ -127,7 +132,8 @@ double Glazing::along(const Vec3d& origin, const Vec3d& direction) const {
     const auto& c = corners_[static_cast<std::size_t>(hit)];
     if (OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), direction) == 0) break;
     const double distance = plane_distance(c, o, direction);
-    t *= transmittance_[static_cast<std::size_t>(hit)];
+    const auto i = static_cast<std::size_t>(hit);
+    if (i < glass_) t *= glass_panes_[i].transmittance(std::abs(OpenMesh::dot(normals_[i], direction)));
     if (!(t > 0)) return 0;
     const double size = std::max({(c[1] - c[0]).norm(), (c[2] - c[0]).norm(), 1e-300});
     o += direction * (std::max(distance, 0.0) + 1e-6 * size);
@@ -190,20 +196,53 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
   const Glazing& glazing = *day.glazing;
   double total = 0;
   for (const Portal& p : panes) total += p.triangle.area;
+  struct Sample {
+    double value = 0, below = 0;
+    int code = -1;  // -1: counts nothing (blocked, another pane's, below x's plane); 1: seen
+  };
   for (const Portal& p : panes) {
     const int wanted = std::max(4, static_cast<int>(std::lround(budget * p.triangle.area / total)));
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(wanted))));
+    auto sample = [&](double u, double v) {
+      Sample out;
+      const Vec3d d = p.triangle.sample(u, v);
+      const double cosine = OpenMesh::dot(d, n);
+      if (cosine <= 0) return out;
+      if (glazing.first(x, d) != static_cast<long>(p.pane)) return out;
+      if (visibility.trace(x, n, d) != Visibility::Hit::nothing) return out;
+      const double through = glazing.along(x, d);
+      out.value = day.sky.luminance(d) * through * cosine;
+      out.below = OpenMesh::dot(d, day.sky.up) <= 0 ? out.value : 0.0;
+      out.code = 1;
+      return out;
+    };
+    std::vector<Sample> grid(static_cast<std::size_t>(side) * side);
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) grid[static_cast<std::size_t>(i * side + j)] = sample((i + 0.5) / side, (j + 0.5) / side);
+    // Where a neighbouring stratum sees otherwise (a mask's or a mullion's edge across
+    // the pane, the horizon of x's plane), 4 x 4 sub-strata.
+    const int m = 4;
     double sum = 0, sum_below = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {
-        const Vec3d d = p.triangle.sample((i + 0.5) / side, (j + 0.5) / side);
-        const double cosine = OpenMesh::dot(d, n);
-        if (cosine <= 0) continue;
-        if (glazing.first(x, d) != static_cast<long>(p.pane)) continue;
-        if (visibility.trace(x, n, d) != Visibility::Hit::nothing) continue;
-        const double value = day.sky.luminance(d) * glazing.along(x, d) * cosine;
-        sum += value;
-        if (OpenMesh::dot(d, day.sky.up) <= 0) sum_below += value;
+        const Sample& c = grid[static_cast<std::size_t>(i * side + j)];
+        bool edge = false;
+        for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+          const int i2 = i + di, j2 = j + dj;
+          if (i2 < 0 || i2 >= side || j2 < 0 || j2 >= side) continue;
+          edge = edge || grid[static_cast<std::size_t>(i2 * side + j2)].code != c.code;
+        }
+        if (!edge) {
+          sum += c.value;
+          sum_below += c.below;
+          continue;
+        }
+        for (int a = 0; a < m; ++a)
+          for (int e = 0; e < m; ++e) {
+            const Sample s = sample((i + (a + 0.5) / m) / side, (j + (e + 0.5) / m) / side);
+            sum += s.value / (m * m);
+            sum_below += s.below / (m * m);
+          }
       }
     const double weight = p.triangle.area / (static_cast<double>(side) * side);
     seen += sum * weight;
@@ -252,20 +291,23 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
   if (visibility && day.glazing) portals = portals_at(*day.glazing, x, n, M_PI / (static_cast<double>(k) * k));
   struct Sample {
     double seen = 0, below = 0;
-    int code = -1;  // -1 blocked; else the transmittance it crossed, in millionths
+    // -1 blocked (or a portal's); else 0 open, or 1 + the first pane it crosses (not its
+    // transmittance, which changes with the angle from one stratum to the next)
+    long code = -1;
   };
   auto sample = [&](double u, double v) {
     Sample out;
     const Vec3d d = direction(u, v);
     const double L = day.sky.luminance(d);
     // Directions through a portal are the portals' (below).
-    if (!portals.empty() && is_portal(portals, day.glazing->first(x, d))) return out;
+    const long pane = day.glazing ? day.glazing->first(x, d) : -1;
+    if (!portals.empty() && is_portal(portals, pane)) return out;
     if (visibility->trace(x, n, d) != Visibility::Hit::nothing) return out;
-    const double through = day.glazing ? day.glazing->along(x, d) : 1.0;
+    const double through = pane >= 0 ? day.glazing->along(x, d) : 1.0;
     const bool under = OpenMesh::dot(d, day.sky.up) <= 0;
     out.seen = L * through;
     out.below = under ? out.seen : 0.0;
-    out.code = static_cast<int>(std::lround(through * 1e6));
+    out.code = pane + 1;
     return out;
   };
   // The unobstructed sum: computed once per normal (the cache above), not again for

@@ -319,10 +319,54 @@ Case cube(double reflectance) {
   return c;
 }
 
+// The glass of the glazed cases: clear, 6 mm, n = 1.52; its transmittance face on
+// chosen as 0.88 (CIE 171's value for the pane was not in the public descriptions).
+constexpr double kGlass = 0.88;
+
+Case glass_at(int incidence) {
+  Case c;
+  c.id = "5.5";
+  c.variant = fmt::format("incidence {} degrees", incidence);
+  c.title = "directional transmittance of clear glass";
+  c.choices =
+      "A 2 x 2 m pane of clear glass (0.88 face on, n = 1.52) 1 m over the middle of a black 40 x 40 m plane, the sun "
+      "at this incidence on the pane (azimuth 180), 100,000 lx direct normal, the sky negligible (uniform, 1e-9 cd/m^2). "
+      "Five points in the pane's sun patch on the plane and four outside it. Reference: E_n cos(theta) times the pane's "
+      "transmittance (reference.h's ClearGlass: Fresnel's reflectances, the light between the surfaces summed term by "
+      "term, the absorption found by bisection), E_n cos(theta) outside.";
+  Obj obj("plate.mtl");
+  obj.use("black");
+  obj.flat(-20, -20, 20, 20, 0, +1);
+  obj.use("glass");
+  obj.flat(-1, -1, 1, 1, 1, +1);
+  c.files = {{"glass.json", fmt::format(R"({{"meshes": [{{"file": "plate.obj"}}],
+  "sky": {{"type": "uniform", "zenith_luminance": 1e-9, "ground_reflectance": 0,
+          "sun": {{"altitude": {}, "azimuth": 180, "direct_normal": 100000}}}}}})",
+                                        90 - incidence)},
+             {"plate.obj", obj.text()},
+             {"plate.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - kGlass)}};
+  const double z = incidence * M_PI / 180;
+  const Vec3d sun(0, -std::sin(z), std::cos(z));
+  // The pane's sun patch: the pane moved down 1 m along -sun, centred at (0, tan z, 0).
+  const double shift = std::tan(z);
+  const ClearGlass pane(kGlass);
+  c.reference = [sun, shift, pane](const Vec3d& x, const Vec3d& n) {
+    const double open = 100000 * std::max(0.0, OpenMesh::dot(sun, n));
+    const bool under = std::abs(x[0]) < 1 && std::abs(x[1] - shift) < 1;
+    return under ? open * pane(sun[2]) : open;
+  };
+  for (const auto& [dx, dy] : std::vector<std::pair<double, double>>{{0, 0}, {0.5, 0.5}, {-0.5, 0.5}, {0.5, -0.5}, {-0.5, -0.5}})
+    c.mesh_points.push_back({Vec3d(dx, shift + dy, 0), Vec3d(0, 0, 1)});
+  for (const auto& [dx, dy] : std::vector<std::pair<double, double>>{{3, 0}, {-3, 0}, {0, 3}, {0, -3}})
+    c.mesh_points.push_back({Vec3d(dx, shift + dy, 0), Vec3d(0, 0, 1)});
+  return c;
+}
+
 // The daylight cases: a black 4 x 4 x 3 m room with an unglazed opening, under the
 // traditional overcast sky (sky 0) or CIE general sky 1-15 with the sun at altitude 35
 // degrees due south (-y), 10,000 lx on the unobstructed horizontal, black ground.
-enum class Opening { roof, facade, facade_overhang, facade_fins };
+enum class Opening { roof, roof_glazed, facade, facade_glazed, facade_overhang, facade_fins };
+
 
 Case daylight(Opening kind, int sky) {
   Case c;
@@ -339,6 +383,18 @@ Case daylight(Opening kind, int sky) {
       c.title = "roof opening, unglazed";
       c.choices = "A 1 x 1 m opening in the middle of the ceiling.";
       room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});
+      break;
+    case Opening::roof_glazed:
+      c.id = "5.10";
+      c.title = "roof opening, glazed";
+      c.choices = "The 5.9 opening glazed with clear glass of 0.88 face on (n = 1.52), less at oblique incidence.";
+      room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});
+      break;
+    case Opening::facade_glazed:
+      c.id = "5.12";
+      c.title = "facade opening, glazed";
+      c.choices = "The 5.11 opening glazed with clear glass of 0.88 face on (n = 1.52), less at oblique incidence.";
+      room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
       break;
     case Opening::facade:
       c.id = "5.11";
@@ -365,7 +421,16 @@ Case daylight(Opening kind, int sky) {
       masks.push_back({Vec3d(3, -1, 0.5), Vec3d(0, 1, 0), Vec3d(0, 0, 2)});
       break;
   }
-  const Rect opening = kind == Opening::roof ? roof_opening : facade_opening;
+  const bool roof = kind == Opening::roof || kind == Opening::roof_glazed;
+  const Rect opening = roof ? roof_opening : facade_opening;
+  const double glass = kind == Opening::roof_glazed || kind == Opening::facade_glazed ? kGlass : 0.0;
+  if (glass > 0) {
+    obj.use("glass");
+    if (roof)
+      obj.flat(1.5, 1.5, 2.5, 2.5, 3, -1);
+    else
+      obj.facade(1, 1, 3, 2, 0, +1);
+  }
   const std::string sky_json =
       sky == 0 ? R"({"type": "cie_overcast", "horizontal_illuminance": 10000, "ground_reflectance": 0})"
                : fmt::format(R"({{"type": "cie", "number": {}, "horizontal_illuminance": 10000, "ground_reflectance": 0,
@@ -374,7 +439,7 @@ Case daylight(Opening kind, int sky) {
   c.files = {{"daylight.json", R"({"meshes": [{"file": "room.obj"}], "sky": )" + sky_json + R"(, "grids": [)" +
                                    grid_json("work_plane", 0, 0, 4, 4, 0.85, 0.25) + "]}"},
              {"room.obj", obj.text()},
-             {"room.mtl", "newmtl black\nKd 0 0 0\n"}};
+             {"room.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - kGlass)}};
   c.choices += " A black 4 x 4 x 3 m room, black ground; " +
                std::string(sky == 0 ? "the traditional CIE overcast sky"
                                     : "the sky's sun at altitude 35 degrees due south (the facade faces south)") +
@@ -382,15 +447,15 @@ Case daylight(Opening kind, int sky) {
                "(0.25 m grid, from 0.125 m off the walls). Reference: the sky's luminance integrated over the "
                "opening (400 x 400 cells), masks by ray tests.";
   if (sky == 0) {
-    c.reference = [opening, masks](const Vec3d& x, const Vec3d& n) {
-      return overcast_through(10000, opening, masks, x, n);
+    c.reference = [opening, masks, glass](const Vec3d& x, const Vec3d& n) {
+      return overcast_through(10000, opening, masks, x, n, glass);
     };
   } else {
     const double altitude = 35 * M_PI / 180;
     auto general = std::make_shared<GeneralSky>(sky, Vec3d(0, -std::cos(altitude), std::sin(altitude)));
     const double scale = 10000 / general->horizontal();
-    c.reference = [general, scale, opening, masks](const Vec3d& x, const Vec3d& n) {
-      return sky_through(*general, scale, opening, masks, x, n);
+    c.reference = [general, scale, opening, masks, glass](const Vec3d& x, const Vec3d& n) {
+      return sky_through(*general, scale, opening, masks, x, n, glass);
     };
   }
   c.mesh_points = floor_points(4, 4, 0.5, 0.25);
@@ -407,9 +472,11 @@ std::vector<Case> cie171_cases() {
   out.push_back(flux_point_source());
   out.push_back(flux_daylight(true));
   out.push_back(flux_daylight(false));
+  for (int incidence = 0; incidence <= 80; incidence += 10) out.push_back(glass_at(incidence));
   out.push_back(sun_and_obstruction());
   for (double rho : {0.0, 0.2, 0.5, 0.8, 0.95}) out.push_back(cube(rho));
-  for (Opening kind : {Opening::roof, Opening::facade, Opening::facade_overhang, Opening::facade_fins})
+  for (Opening kind : {Opening::roof, Opening::roof_glazed, Opening::facade, Opening::facade_glazed,
+                       Opening::facade_overhang, Opening::facade_fins})
     for (int sky = 0; sky <= 15; ++sky) out.push_back(daylight(kind, sky));
   return out;
 }

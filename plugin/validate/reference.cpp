@@ -107,12 +107,52 @@ bool blocked(const std::vector<Rect>& masks, const Vec3d& x, const Vec3d& d) {
 
 namespace {
 
+// One polarisation: the pane passes (1 - r)^2 a, then (1 - r)^2 a (r a)^2, ...
+double pane_series(double r, double a) {
+  double sum = 0, term = (1 - r) * (1 - r) * a;
+  for (int k = 0; k < 200 && term > 1e-16; ++k, term *= r * r * a * a) sum += term;
+  return sum;
+}
+
+double unpolarised(double one_pass, double c) {
+  const double n = 1.52;
+  c = std::clamp(c, 0.0, 1.0);
+  const double sin_t = std::sqrt(1 - c * c) / n, cos_t = std::sqrt(1 - sin_t * sin_t);
+  const double rs = std::pow((c - n * cos_t) / (c + n * cos_t), 2);
+  const double rp = std::pow((n * c - cos_t) / (n * c + cos_t), 2);
+  const double a = std::pow(one_pass, 1 / cos_t);
+  return 0.5 * (pane_series(rs, a) + pane_series(rp, a));
+}
+
+}  // namespace
+
+ClearGlass::ClearGlass(double normal) {
+  const double most = unpolarised(1, 1);
+  if (normal >= most) {
+    scale_ = normal / most;
+    return;
+  }
+  double lo = 0, hi = 1;  // bisection on what the pane passes face on
+  for (int k = 0; k < 100; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (unpolarised(mid, 1) < normal ? lo : hi) = mid;
+  }
+  one_pass_ = 0.5 * (lo + hi);
+}
+
+double ClearGlass::operator()(double cos_incidence) const { return scale_ * unpolarised(one_pass_, cos_incidence); }
+
+namespace {
+
 template <class Luminance>
 double through(const Luminance& luminance, const Rect& opening, const std::vector<Rect>& masks, const Vec3d& x,
-               const Vec3d& n, int cells_u, int cells_v) {
+               const Vec3d& n, double glass) {
+  const int cells_u = std::max(1, static_cast<int>(std::lround(opening.u.norm() / 0.01)));
+  const int cells_v = std::max(1, static_cast<int>(std::lround(opening.v.norm() / 0.01)));
   const Vec3d normal = OpenMesh::cross(opening.u, opening.v);
   const double cell = normal.norm() / (static_cast<double>(cells_u) * cells_v);
   const Vec3d facing = normal.normalized();
+  const ClearGlass pane(glass > 0 ? glass : 1);
   double sum = 0;
   for (int i = 0; i < cells_u; ++i)
     for (int j = 0; j < cells_v; ++j) {
@@ -122,7 +162,7 @@ double through(const Luminance& luminance, const Rect& opening, const std::vecto
       const Vec3d d = to / std::sqrt(r2);
       const double at_x = OpenMesh::dot(d, n), at_opening = std::abs(OpenMesh::dot(d, facing));
       if (at_x <= 0 || blocked(masks, x, d)) continue;
-      sum += luminance(d) * at_x * at_opening / r2 * cell;
+      sum += luminance(d) * (glass > 0 ? pane(at_opening) : 1.0) * at_x * at_opening / r2 * cell;
     }
   return sum;
 }
@@ -130,14 +170,13 @@ double through(const Luminance& luminance, const Rect& opening, const std::vecto
 }  // namespace
 
 double sky_through(const GeneralSky& sky, double scale, const Rect& opening, const std::vector<Rect>& masks,
-                   const Vec3d& x, const Vec3d& n, int cells_u, int cells_v) {
-  return through([&](const Vec3d& d) { return scale * sky.relative(d); }, opening, masks, x, n, cells_u, cells_v);
+                   const Vec3d& x, const Vec3d& n, double glass) {
+  return through([&](const Vec3d& d) { return scale * sky.relative(d); }, opening, masks, x, n, glass);
 }
 
 double overcast_through(double horizontal, const Rect& opening, const std::vector<Rect>& masks, const Vec3d& x,
-                        const Vec3d& n, int cells_u, int cells_v) {
-  return through([&](const Vec3d& d) { return overcast_luminance(horizontal, d); }, opening, masks, x, n, cells_u,
-                 cells_v);
+                        const Vec3d& n, double glass) {
+  return through([&](const Vec3d& d) { return overcast_luminance(horizontal, d); }, opening, masks, x, n, glass);
 }
 
 }  // namespace dynrad::validate

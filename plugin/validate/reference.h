@@ -35,6 +35,20 @@ class GeneralSky {
   double at_zenith_ = 1;
 };
 
+// The transmittance of a pane of clear glass of refractive index 1.52 whose
+// transmittance face on is `normal`, at incidence cos_incidence: the light going back
+// and forth between its two surfaces summed term by term for each polarisation
+// (Fresnel's reflectances), the absorption along the refracted path found from `normal`
+// by bisection.
+class ClearGlass {
+ public:
+  explicit ClearGlass(double normal);
+  double operator()(double cos_incidence) const;
+
+ private:
+  double one_pass_ = 1, scale_ = 1;  // the share one pass keeps face on; a scale above what surfaces allow
+};
+
 // An axis-aligned rectangle in space, for openings and masks: corner `origin`, edges
 // `u` and `v` (perpendicular).
 struct Rect {
@@ -45,15 +59,15 @@ struct Rect {
 bool blocked(const std::vector<Rect>& masks, const Vec3d& x, const Vec3d& d);
 
 // Illuminance at x facing n from a sky of luminance L(d) = scale * sky.relative(d)
-// seen through `opening` (and past `masks`), by the midpoint rule on `cells_u` x
-// `cells_v` cells of the opening.
+// seen through `opening` (and past `masks`), by the midpoint rule on cells of 1 cm of
+// the opening; glazed with clear glass of transmittance `glass` face on when above 0.
 double sky_through(const GeneralSky& sky, double scale, const Rect& opening, const std::vector<Rect>& masks,
-                   const Vec3d& x, const Vec3d& n, int cells_u = 400, int cells_v = 400);
+                   const Vec3d& x, const Vec3d& n, double glass = 0);
 
 // The same for the traditional CIE overcast sky, L = Lz (1 + 2 cos Z) / 3 with Lz such
 // that the unobstructed horizontal illuminance is `horizontal` (Lz = 9 E / (7 pi)).
 double overcast_through(double horizontal, const Rect& opening, const std::vector<Rect>& masks, const Vec3d& x,
-                        const Vec3d& n, int cells_u = 400, int cells_v = 400);
+                        const Vec3d& n, double glass = 0);
 
 // The illuminance on a plane facing `n` from the whole unobstructed sky above the
 // horizon, on a 1440 x 720 grid of azimuth and zenith angle: the flux per area that
