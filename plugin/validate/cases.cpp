@@ -329,36 +329,35 @@ Case glass_at(int incidence) {
   c.variant = fmt::format("incidence {} degrees", incidence);
   c.title = "directional transmittance of clear glass";
   c.choices =
-      "A 2 x 2 m pane of clear glass (0.88 face on, n = 1.52) 1 m over the middle of a black 40 x 40 m plane, the sun "
-      "at this incidence on the pane (azimuth 180), 100,000 lx direct normal, the sky negligible (uniform, 1e-9 cd/m^2). "
-      "Five points in the pane's sun patch on the plane and four outside it. Reference: E_n cos(theta) times the pane's "
-      "transmittance (reference.h's ClearGlass: Fresnel's reflectances, the light between the surfaces summed term by "
-      "term, the absorption found by bisection), E_n cos(theta) outside.";
-  Obj obj("plate.mtl");
+      "A black room 40 x 40 m and 1 m high with a 2 x 2 m opening in the middle of its ceiling, glazed with clear glass "
+      "(0.88 face on, n = 1.52); the sun at this incidence on the pane (azimuth 180), 100,000 lx direct normal, the sky "
+      "negligible (uniform, 1e-9 cd/m^2). Five points in the sun patch on the floor and four in the dark around it. "
+      "Reference: E_n cos(theta) times the pane's transmittance (reference.h's ClearGlass: Fresnel's reflectances, the "
+      "light between the surfaces summed term by term, the absorption found by bisection).";
+  Obj obj("room.mtl");
   obj.use("black");
-  obj.flat(-20, -20, 20, 20, 0, +1);
+  room(obj, 40, 40, 1, {19, 19, 21, 21});
   obj.use("glass");
-  obj.flat(-1, -1, 1, 1, 1, +1);
-  c.files = {{"glass.json", fmt::format(R"({{"meshes": [{{"file": "plate.obj"}}],
+  obj.flat(19, 19, 21, 21, 1, -1);
+  c.files = {{"glass.json", fmt::format(R"({{"meshes": [{{"file": "room.obj"}}],
   "sky": {{"type": "uniform", "zenith_luminance": 1e-9, "ground_reflectance": 0,
           "sun": {{"altitude": {}, "azimuth": 180, "direct_normal": 100000}}}}}})",
                                         90 - incidence)},
-             {"plate.obj", obj.text()},
-             {"plate.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - kGlass)}};
+             {"room.obj", obj.text()},
+             {"room.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - kGlass)}};
   const double z = incidence * M_PI / 180;
   const Vec3d sun(0, -std::sin(z), std::cos(z));
-  // The pane's sun patch: the pane moved down 1 m along -sun, centred at (0, tan z, 0).
-  const double shift = std::tan(z);
+  // The sun patch: the opening moved down 1 m along -sun, centred at (20, 20 + tan z).
+  const double centre = 20 + std::tan(z);
   const ClearGlass pane(kGlass);
-  c.reference = [sun, shift, pane](const Vec3d& x, const Vec3d& n) {
-    const double open = 100000 * std::max(0.0, OpenMesh::dot(sun, n));
-    const bool under = std::abs(x[0]) < 1 && std::abs(x[1] - shift) < 1;
-    return under ? open * pane(sun[2]) : open;
+  c.reference = [sun, centre, pane](const Vec3d& x, const Vec3d& n) {
+    const bool lit = std::abs(x[0] - 20) < 1 && std::abs(x[1] - centre) < 1;
+    return lit ? 100000 * std::max(0.0, OpenMesh::dot(sun, n)) * pane(sun[2]) : 0.0;
   };
   for (const auto& [dx, dy] : std::vector<std::pair<double, double>>{{0, 0}, {0.5, 0.5}, {-0.5, 0.5}, {0.5, -0.5}, {-0.5, -0.5}})
-    c.mesh_points.push_back({Vec3d(dx, shift + dy, 0), Vec3d(0, 0, 1)});
-  for (const auto& [dx, dy] : std::vector<std::pair<double, double>>{{3, 0}, {-3, 0}, {0, 3}, {0, -3}})
-    c.mesh_points.push_back({Vec3d(dx, shift + dy, 0), Vec3d(0, 0, 1)});
+    c.mesh_points.push_back({Vec3d(20 + dx, centre + dy, 0), Vec3d(0, 0, 1)});
+  for (const auto& [dx, dy] : std::vector<std::pair<double, double>>{{2, 0}, {-2, 0}, {0, 2}, {0, -2}})
+    c.mesh_points.push_back({Vec3d(20 + dx, centre + dy, 0), Vec3d(0, 0, 1)});
   return c;
 }
 
