@@ -36,6 +36,7 @@ namespace fs = std::filesystem;
 
 struct ValidateOptions {
   std::vector<std::string> cases;  // ids ("5.11") or id/variant prefixes; all when empty
+  std::vector<std::string> skip;   // the same, left out
   std::string json, keep;
   std::string quality;  // passed to every solve; the solve's default when empty
   bool list = false;
@@ -201,11 +202,14 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string
   return out;
 }
 
-bool selected(const ValidateOptions& options, const validate::Case& c) {
-  if (options.cases.empty()) return true;
-  for (const std::string& s : options.cases)
+bool matches(const std::vector<std::string>& patterns, const validate::Case& c) {
+  for (const std::string& s : patterns)
     if (s == c.id || (c.id + " " + c.variant).rfind(s, 0) == 0) return true;
   return false;
+}
+
+bool selected(const ValidateOptions& options, const validate::Case& c) {
+  return (options.cases.empty() || matches(options.cases, c)) && !matches(options.skip, c);
 }
 
 int run_validate(const ValidateOptions& options) {
@@ -283,6 +287,7 @@ Command add_validate_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "validate", "Run the analytical test cases of CIE 171:2006 and compare with their references (see README)");
   command->add_option("--case", options->cases, "Only these cases: a section (5.11) or the start of 'id variant'");
+  command->add_option("--skip", options->skip, "Leave these cases out (as --case names them)");
   command->add_flag("--list", options->list, "List the cases and exit");
   command->add_option("--quality", options->quality, "Solve every case at this quality (draft, normal, high)")
       ->check(CLI::IsMember({"draft", "normal", "high"}));
