@@ -15,6 +15,18 @@ double area(const std::vector<std::array<Vec3d, 3>>& triangles) {
   return sum;
 }
 
+// A 4 x 3 wall in the plane y = 0, facing +y, with a 2 x 1 hole over x in [1, 3],
+// z in [1, 2].
+void wall_with_hole(SceneBuilder& b, std::uint32_t material) {
+  auto facade = [&](double x0, double z0, double x1, double z1) {
+    b.quad(Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0), material);
+  };
+  facade(0, 0, 1, 3);
+  facade(3, 0, 4, 3);
+  facade(1, 0, 3, 1);
+  facade(1, 2, 3, 3);
+}
+
 TEST(Openings, AFlatSurfaceStandingAloneHasNone) {
   SceneBuilder b;
   const std::uint32_t m = b.material("grey", 0.5);
@@ -32,16 +44,8 @@ TEST(Openings, AFlatSurfaceStandingAloneHasNone) {
 }
 
 TEST(Openings, AHoleInAWallAnOpenTopAndADoorAreFound) {
-  // A 4 x 3 wall with a 2 x 1 hole.
   SceneBuilder wall;
-  const std::uint32_t m = wall.material("grey", 0.5);
-  auto facade = [&](double x0, double z0, double x1, double z1) {  // facing +y
-    wall.quad(Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0), m);
-  };
-  facade(0, 0, 1, 3);
-  facade(3, 0, 4, 3);
-  facade(1, 0, 3, 1);
-  facade(1, 2, 3, 3);
+  wall_with_hole(wall, wall.material("grey", 0.5));
   const auto hole = load_soup(wall.soup(), "wall").openings;
   EXPECT_NEAR(area(hole), 2.0, 1e-9);
   for (const auto& t : hole)
@@ -79,13 +83,7 @@ TEST(Openings, HolesThatSurfacesBehindMeetAreFoundAndOnesClosedInFrontAreNot) {
   // than the hole: where it meets the wall beside the hole, cleanup leaves slits.
   SceneBuilder wall;
   const std::uint32_t m = wall.material("grey", 0.5);
-  auto facade = [&](double x0, double z0, double x1, double z1) {  // facing +y
-    wall.quad(Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0), m);
-  };
-  facade(0, 0, 1, 3);
-  facade(3, 0, 4, 3);
-  facade(1, 0, 3, 1);
-  facade(1, 2, 3, 3);
+  wall_with_hole(wall, m);
   wall.quad(Vec3d(0, -1, 2), Vec3d(0, 0, 2), Vec3d(4, 0, 2), Vec3d(4, -1, 2), m);  // facing down
   EXPECT_NEAR(area(load_soup(wall.soup(), "overhang").openings), 2.0, 1e-9);
 

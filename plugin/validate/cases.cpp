@@ -381,31 +381,26 @@ Case daylight(Opening kind, int sky) {
       c.id = "5.9";
       c.title = "roof opening, unglazed";
       c.choices = "A 1 x 1 m opening in the middle of the ceiling.";
-      room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});
       break;
     case Opening::roof_glazed:
       c.id = "5.10";
       c.title = "roof opening, glazed";
       c.choices = "The 5.9 opening glazed with clear glass of 0.88 face on (n = 1.52), less at oblique incidence.";
-      room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});
       break;
     case Opening::facade_glazed:
       c.id = "5.12";
       c.title = "facade opening, glazed";
       c.choices = "The 5.11 opening glazed with clear glass of 0.88 face on (n = 1.52), less at oblique incidence.";
-      room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
       break;
     case Opening::facade:
       c.id = "5.11";
       c.title = "facade opening, unglazed";
       c.choices = "A 2 x 1 m opening in the wall y = 0, its sill 1 m up, centred.";
-      room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
       break;
     case Opening::facade_overhang:
       c.id = "5.13";
       c.title = "facade opening with a horizontal mask";
       c.choices = "The 5.11 opening under an overhang: a black plate 1 m deep at the opening's head (2 m up), 4 m wide.";
-      room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
       obj.flat(0, -1, 4, 0, 2, -1);
       masks.push_back({Vec3d(0, -1, 2), Vec3d(4, 0, 0), Vec3d(0, 1, 0)});
       break;
@@ -413,7 +408,6 @@ Case daylight(Opening kind, int sky) {
       c.id = "5.14";
       c.title = "facade opening with vertical masks";
       c.choices = "The 5.11 opening between two black fins 1 m deep at its sides (x = 1 and x = 3), from 0.5 to 2.5 m up.";
-      room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
       obj.quad(Vec3d(1, -1, 0.5), Vec3d(1, 0, 0.5), Vec3d(1, 0, 2.5), Vec3d(1, -1, 2.5));  // facing +x
       obj.quad(Vec3d(3, -1, 0.5), Vec3d(3, -1, 2.5), Vec3d(3, 0, 2.5), Vec3d(3, 0, 0.5));  // facing -x
       masks.push_back({Vec3d(1, -1, 0.5), Vec3d(0, 1, 0), Vec3d(0, 0, 2)});
@@ -422,6 +416,10 @@ Case daylight(Opening kind, int sky) {
   }
   const bool roof = kind == Opening::roof || kind == Opening::roof_glazed;
   const Rect opening = roof ? roof_opening : facade_opening;
+  if (roof)
+    room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});
+  else
+    room(obj, 4, 4, 3, {}, {1, 1, 3, 2});
   const double glass = kind == Opening::roof_glazed || kind == Opening::facade_glazed ? kGlass : 0.0;
   if (glass > 0) {
     obj.use("glass");
