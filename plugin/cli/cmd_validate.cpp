@@ -8,6 +8,7 @@
 #include "mesh/error.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/lit_mesh.h"
+#include "plugin/cli/validate_report.h"
 #include "plugin/validate/cases.h"
 
 #include <fmt/format.h>
@@ -37,7 +38,7 @@ namespace fs = std::filesystem;
 struct ValidateOptions {
   std::vector<std::string> cases;  // ids ("5.11") or id/variant prefixes; all when empty
   std::vector<std::string> skip;   // the same, left out
-  std::string json, keep;
+  std::string json, html, keep;
   std::string quality;  // passed to every solve; the solve's default when empty
   bool list = false;
 };
@@ -87,6 +88,7 @@ struct Outcome {
   double worst = 0, mean = 0, strict_worst = 0, seconds = 0;
   std::size_t floored = 0;  // points judged against 1% of the largest reference
   std::string worst_where, failure;
+  std::string picture;  // the first grid's false-colour plan (a PNG the solve wrote), if any
   bool passed() const { return failure.empty() && worst <= c->goal; }
 };
 
@@ -138,6 +140,8 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string
   }
   // Every point of the scene's grids (solve writes lit_grid_NAME.csv).
   for (const std::string& grid : c.grids) {
+    if (out.picture.empty() && fs::exists(dir / ("lit_grid_" + grid + ".png")))
+      out.picture = (dir / ("lit_grid_" + grid + ".png")).string();
     std::ifstream csv(dir / ("lit_grid_" + grid + ".csv"));
     if (!csv) {
       out.failure = "no grid " + grid + " in the solve's output";
@@ -225,6 +229,7 @@ int run_validate(const ValidateOptions& options) {
   if (chosen.empty())
     throw InputError("--case", 0, "no case matches; `dynrad validate --list` lists them (give an id such as 5.11).");
   if (!options.json.empty()) check_output_writable(options.json);
+  if (!options.html.empty()) check_output_writable(options.html);
   fs::path base;
   if (!options.keep.empty()) {
     base = options.keep;
@@ -258,7 +263,7 @@ int run_validate(const ValidateOptions& options) {
     std::cout.flush();
     outcomes.push_back(std::move(o));
   }
-  if (!options.json.empty()) {
+  if (!options.json.empty() || !options.html.empty()) {
     nlohmann::json j = nlohmann::json::array();
     for (const Outcome& o : outcomes) {
       nlohmann::json points = nlohmann::json::array();
@@ -271,9 +276,17 @@ int run_validate(const ValidateOptions& options) {
                    {"points_in_shade", o.floored}, {"passed", o.passed()}, {"failure", o.failure},
                    {"seconds", o.seconds}, {"points", points}});
     }
-    AtomicFile file(options.json, std::ios::out);
-    file.stream() << j.dump(1) << "\n";
-    file.commit();
+    if (!options.json.empty()) {
+      AtomicFile file(options.json, std::ios::out);
+      file.stream() << j.dump(1) << "\n";
+      file.commit();
+    }
+    if (!options.html.empty()) {
+      // The pictures are read now, before the work folder goes.
+      for (std::size_t k = 0; k < outcomes.size(); ++k)
+        j[k]["picture"] = outcomes[k].picture.empty() ? nlohmann::json() : nlohmann::json(outcomes[k].picture);
+      write_validation_report(options.html, j, options.quality.empty() ? "normal (the default)" : options.quality);
+    }
   }
   if (options.keep.empty()) fs::remove_all(base);
   std::cout << (all_passed ? "every case within its goal\n" : "some cases are over their goal\n");
@@ -292,6 +305,8 @@ Command add_validate_command(CLI::App& app) {
   command->add_option("--quality", options->quality, "Solve every case at this quality (draft, normal, high)")
       ->check(CLI::IsMember({"draft", "normal", "high"}));
   command->add_option("--json", options->json, "Write every compared point and each case's figures here");
+  command->add_option("--html", options->html,
+                      "Write the validation report here: one HTML page, the tables and each run's work-plane plan");
   command->add_option("--keep", options->keep, "Keep each case's scene, lit mesh and logs in this folder");
   return [options] { return run_validate(*options); };
 }

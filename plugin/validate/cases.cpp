@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <mutex>
 
 namespace dynrad::validate {
 
@@ -452,9 +453,12 @@ Case daylight(Opening kind, int sky) {
   } else {
     const double altitude = 35 * M_PI / 180;
     auto general = std::make_shared<GeneralSky>(sky, Vec3d(0, -std::cos(altitude), std::sin(altitude)));
-    const double scale = 10000 / general->horizontal();
+    // The scale to 10,000 lx (a numerical integral over the sky) when first asked for, so
+    // that listing or choosing cases costs nothing.
+    auto scale = std::make_shared<std::pair<std::once_flag, double>>();
     c.reference = [general, scale, opening, masks, glass](const Vec3d& x, const Vec3d& n) {
-      return sky_through(*general, scale, opening, masks, x, n, glass);
+      std::call_once(scale->first, [&] { scale->second = 10000 / general->horizontal(); });
+      return sky_through(*general, scale->second, opening, masks, x, n, glass);
     };
   }
   c.mesh_points = floor_points(4, 4, 0.5, 0.25);
