@@ -82,10 +82,8 @@ struct SphericalTriangle {
 Glazing::Glazing(const std::vector<GlazingTriangle>& triangles, const std::vector<std::array<Vec3d, 3>>& openings) {
   for (const GlazingTriangle& t : triangles) {
     corners_.push_back(t.corners);
-    transmittance_.push_back(t.transmittance.luminance());
-    glass_panes_.emplace_back(transmittance_.back());
+    glass_panes_.emplace_back(t.transmittance.luminance());
   }
-  glass_ = corners_.size();
   if (!openings.empty()) {
     // An opening is covered when glass lies in its plane across its centroid.
     std::unique_ptr<RayCaster> glass;
@@ -102,14 +100,15 @@ Glazing::Glazing(const std::vector<GlazingTriangle>& triangles, const std::vecto
         const long hit = glass->first_hit(from, -m);
         covered = hit >= 0 && plane_distance(corners_[static_cast<std::size_t>(hit)], from, -m) < 2e-3 * size;
       }
-      if (covered) continue;
-      corners_.push_back(o);
-      transmittance_.push_back(1.0);
+      if (!covered) corners_.push_back(o);
     }
   }
   for (const auto& c : corners_) {
     const Vec3d normal = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
-    normals_.push_back(normal.norm() > 0 ? normal.normalized() : Vec3d(0, 0, 1));
+    normals_.push_back(normal.norm() > 0 ? normal.normalized() : Vec3d(0, 0, 0));
+    centres_.push_back((c[0] + c[1] + c[2]) / 3.0);
+    radii_.push_back(std::max({(c[0] - centres_.back()).norm(), (c[1] - centres_.back()).norm(),
+                               (c[2] - centres_.back()).norm()}));
   }
   if (!corners_.empty()) caster_ = std::make_unique<RayCaster>(pane_points(corners_), pane_indices(corners_.size()));
 }
@@ -129,11 +128,12 @@ double Glazing::along(const Vec3d& origin, const Vec3d& direction) const {
   for (int crossing = 0; crossing < 16; ++crossing) {
     const long hit = caster_->first_hit(o, direction);
     if (hit < 0) break;
-    const auto& c = corners_[static_cast<std::size_t>(hit)];
-    if (OpenMesh::dot(OpenMesh::cross(c[1] - c[0], c[2] - c[0]), direction) == 0) break;
-    const double distance = plane_distance(c, o, direction);
     const auto i = static_cast<std::size_t>(hit);
-    if (i < glass_) t *= glass_panes_[i].transmittance(std::abs(OpenMesh::dot(normals_[i], direction)));
+    const auto& c = corners_[i];
+    const double facing = OpenMesh::dot(normals_[i], direction);
+    if (facing == 0) break;
+    const double distance = OpenMesh::dot(normals_[i], c[0] - o) / facing;
+    if (i < glass_panes_.size()) t *= glass_panes_[i].transmittance(std::abs(facing));
     if (!(t > 0)) return 0;
     const double size = std::max({(c[1] - c[0]).norm(), (c[2] - c[0]).norm(), 1e-300});
     o += direction * (std::max(distance, 0.0) + 1e-6 * size);
@@ -163,9 +163,7 @@ std::vector<Portal> portals_at(const Glazing& glazing, const Vec3d& x, const Vec
   for (std::size_t i = 0; i < glazing.size(); ++i) {
     const auto& c = glazing.pane(i);
     // A cheap bound first: the cap of the pane's bounding sphere.
-    const Vec3d centre = (c[0] + c[1] + c[2]) / 3.0;
-    const double radius = std::max({(c[0] - centre).norm(), (c[1] - centre).norm(), (c[2] - centre).norm()});
-    const double distance = (centre - x).norm();
+    const double radius = glazing.radius(i), distance = (glazing.centre(i) - x).norm();
     if (distance > radius && 2 * M_PI * (1 - std::sqrt(1 - (radius / distance) * (radius / distance))) < least) continue;
     Vec3d to[3];
     double height = 0, size = 0;
@@ -175,8 +173,7 @@ std::vector<Portal> portals_at(const Glazing& glazing, const Vec3d& x, const Vec
       size = std::max(size, (c[k] - c[(k + 1) % 3]).norm());
     }
     if (height <= 1e-9 * size) continue;  // at or below x's horizon
-    const Vec3d normal = OpenMesh::cross(c[1] - c[0], c[2] - c[0]);
-    if (std::abs(OpenMesh::dot(normal.normalized(), to[0])) <= 1e-9 * size) continue;  // x in its plane
+    if (std::abs(OpenMesh::dot(glazing.normal(i), to[0])) <= 1e-9 * size) continue;  // x in its plane
     SphericalTriangle t(to[0].normalized(), to[1].normalized(), to[2].normalized());
     if (!(t.area >= least)) continue;
     out.push_back({i, t});
@@ -220,8 +217,11 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) grid[static_cast<std::size_t>(i * side + j)] = sample((i + 0.5) / side, (j + 0.5) / side);
     // Where a neighbouring stratum sees otherwise (a mask's or a mullion's edge across
-    // the pane, the horizon of x's plane), 4 x 4 sub-strata.
-    const int m = 4;
+    // the pane, the horizon of x's plane), 2 x 2 sub-strata. (None: a grid point 0.125 m
+    // from a facade under an overhang was 2.4% off, CIE 171 test 5.13; 2 x 2: 1.1%;
+    // 4 x 4: 0.23%, but the IFC house's solve under an overcast sky took 64.6 s
+    // against 52.7 s with 2 x 2 and 49.8 s before portals.)
+    const int m = 2;
     double sum = 0, sum_below = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {

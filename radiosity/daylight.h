@@ -69,18 +69,21 @@ class Glazing {
   // The product of the transmittances of the glass a ray from `origin` along `direction`
   // crosses (1 when none).
   double along(const Vec3d& origin, const Vec3d& direction) const;
-  std::size_t size() const { return transmittance_.size(); }
+  std::size_t size() const { return corners_.size(); }
   // The pane a ray from `origin` along `direction` crosses first, or -1.
   long first(const Vec3d& origin, const Vec3d& direction) const;
   const std::array<Vec3d, 3>& pane(std::size_t i) const { return corners_[i]; }
-  std::size_t glass_count() const { return glass_; }
+  const Vec3d& normal(std::size_t i) const { return normals_[i]; }
+  // A sphere around pane i: its corners' mean and the farthest corner's distance.
+  const Vec3d& centre(std::size_t i) const { return centres_[i]; }
+  double radius(std::size_t i) const { return radii_[i]; }
+  std::size_t glass_count() const { return glass_panes_.size(); }
 
  private:
-  std::vector<std::array<Vec3d, 3>> corners_;
-  std::vector<double> transmittance_;  // at normal incidence; 1 for an opening
-  std::vector<GlassPane> glass_panes_;  // per pane of glass (the first glass_), its fall with the angle
-  std::vector<Vec3d> normals_;          // unit, per pane
-  std::size_t glass_ = 0;              // the glass first, then the openings
+  std::vector<std::array<Vec3d, 3>> corners_;  // the glass first, then the openings
+  std::vector<GlassPane> glass_panes_;         // per pane of glass, its transmittance by the angle
+  std::vector<Vec3d> normals_, centres_;       // per pane
+  std::vector<double> radii_;
   std::unique_ptr<RayCaster> caster_;
 };
 

@@ -6,6 +6,7 @@
 // exits with kExitValidation when any case misses its goal.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/io_util.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/lit_mesh.h"
 #include "plugin/cli/validate_report.h"
@@ -26,7 +27,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 
 extern char** environ;
 
@@ -68,13 +68,6 @@ int run_self(const std::vector<std::string>& arguments, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 struct Compared {
   std::string where;  // "mesh (1.25, 0.25, 0)", "grid work_plane (...)", "area floor"
   double value = 0, reference = 0;
@@ -113,7 +106,7 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string
   solve.insert(solve.end(), c.options.begin(), c.options.end());
   if (!quality.empty()) solve.insert(solve.end(), {"--quality", quality});
   if (const int code = run_self(solve, dir / "solve.log"); code != 0) {
-    out.failure = fmt::format("solve exited with {}: {}", code, read_file(dir / "solve.log"));
+    out.failure = fmt::format("solve exited with {}: {}", code, detail::read_file((dir / "solve.log").string()));
     return out;
   }
   // The lit mesh at points.
@@ -127,10 +120,10 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string
                                (dir / "probe.json").string()},
                               dir / "probe.log");
     if (code != 0) {
-      out.failure = fmt::format("probe exited with {}: {}", code, read_file(dir / "probe.log"));
+      out.failure = fmt::format("probe exited with {}: {}", code, detail::read_file((dir / "probe.log").string()));
       return out;
     }
-    const nlohmann::json probed = nlohmann::json::parse(read_file(dir / "probe.json"));
+    const nlohmann::json probed = nlohmann::json::parse(detail::read_file((dir / "probe.json").string()));
     for (std::size_t i = 0; i < c.mesh_points.size(); ++i) {
       const Vec3d& p = c.mesh_points[i].first;
       compared.push_back({fmt::format("mesh ({:.3g}, {:.3g}, {:.3g})", p[0], p[1], p[2]),
