@@ -40,6 +40,10 @@ struct ValidateOptions {
   std::vector<std::string> skip;   // the same, left out
   std::string json, html, keep;
   std::string quality;  // passed to every solve; the solve's default when empty
+  // Passed to every solve as --converge when above 0: shoot until this fraction of the
+  // light is unshot, so that what is measured is the mesh and the transfers alone, not
+  // where the solve's error estimate stops it.
+  double converge = 0;
   bool list = false;
 };
 
@@ -94,7 +98,7 @@ double relative(double value, double reference, double scale) {
   return std::abs(value - reference) / std::max(std::abs(reference), kShadeFloor * scale);
 }
 
-Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string& quality) {
+Outcome run_case(const validate::Case& c, const fs::path& dir, const ValidateOptions& options) {
   Outcome out;
   out.c = &c;
   const auto start = std::chrono::steady_clock::now();
@@ -104,7 +108,8 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const std::string
   std::vector<std::string> solve = {"solve", scene.string(), "-o", lit.string(), "--report",
                                     (dir / "report.json").string(), "-q"};
   solve.insert(solve.end(), c.options.begin(), c.options.end());
-  if (!quality.empty()) solve.insert(solve.end(), {"--quality", quality});
+  if (!options.quality.empty()) solve.insert(solve.end(), {"--quality", options.quality});
+  if (options.converge > 0) solve.insert(solve.end(), {"--converge", fmt::format("{}", options.converge)});
   if (const int code = run_self(solve, dir / "solve.log"); code != 0) {
     out.failure = fmt::format("solve exited with {}: {}", code, detail::read_file((dir / "solve.log").string()));
     return out;
@@ -231,11 +236,14 @@ int run_validate(const ValidateOptions& options) {
     if (!mkdtemp(pattern)) throw std::runtime_error("cannot make a temporary folder in /tmp");
     base = pattern;
   }
-  std::cout << fmt::format("CIE 171:2006 analytical cases, {} runs at {} quality (work in {})\n", chosen.size(),
-                           options.quality.empty() ? "the default (normal)" : options.quality, base.string());
+  std::string how = options.quality.empty() ? "the default (normal)" : options.quality;
+  how += " quality";
+  if (options.converge > 0) how += fmt::format(", shot until {:g}% of the light is unshot", 100 * options.converge);
+  std::cout << fmt::format("CIE 171:2006 analytical cases, {} runs at {} (work in {})\n", chosen.size(), how,
+                           base.string());
   std::cout << "errors relative to the reference; where it is below 1% of the case's largest (shade), to that 1% "
                "(\"strict\": to the reference alone)\n";
-  std::cout << fmt::format("{:<5} {:<40} {:<26} {:>6} {:>8} {:>8} {:>6} {:>5} {:>8}  {}\n", "case", "what", "variant",
+  std::cout << fmt::format("{:<5} {:<40} {:<34} {:>6} {:>8} {:>8} {:>6} {:>5} {:>8}  {}\n", "case", "what", "variant",
                            "points", "worst", "mean", "goal", "CIE", "strict", "worst at");
   std::vector<Outcome> outcomes;
   bool all_passed = true;
@@ -244,12 +252,12 @@ int run_validate(const ValidateOptions& options) {
     std::string folder = fmt::format("{:02}_{}_{}", k, c.id, c.variant);
     for (char& ch : folder)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '_') ch = '_';
-    Outcome o = run_case(c, base / folder, options.quality);
+    Outcome o = run_case(c, base / folder, options);
     all_passed = all_passed && o.passed();
     if (!o.failure.empty())
-      std::cout << fmt::format("{:<5} {:<40} {:<26} FAILED: {}\n", c.id, c.title, c.variant, o.failure);
+      std::cout << fmt::format("{:<5} {:<40} {:<34} FAILED: {}\n", c.id, c.title, c.variant, o.failure);
     else
-      std::cout << fmt::format("{:<5} {:<40} {:<26} {:>6} {:>7.3f}% {:>7.3f}% {:>5.1f}% {:>4.0f}% {:>7.2f}%  {}{}\n",
+      std::cout << fmt::format("{:<5} {:<40} {:<34} {:>6} {:>7.3f}% {:>7.3f}% {:>5.1f}% {:>4.0f}% {:>7.2f}%  {}{}\n",
                                c.id, c.title, c.variant, o.points.size(), 100 * o.worst, 100 * o.mean, 100 * c.goal,
                                100 * c.cie_tolerance, 100 * o.strict_worst, o.worst_where,
                                o.passed() ? "" : "   ** over the goal **");
@@ -278,7 +286,7 @@ int run_validate(const ValidateOptions& options) {
       // The pictures are read now, before the work folder goes.
       for (std::size_t k = 0; k < outcomes.size(); ++k)
         j[k]["picture"] = outcomes[k].picture.empty() ? nlohmann::json() : nlohmann::json(outcomes[k].picture);
-      write_validation_report(options.html, j, options.quality.empty() ? "normal (the default)" : options.quality);
+      write_validation_report(options.html, j, how);
     }
   }
   if (options.keep.empty()) fs::remove_all(base);
@@ -297,6 +305,10 @@ Command add_validate_command(CLI::App& app) {
   command->add_flag("--list", options->list, "List the cases and exit");
   command->add_option("--quality", options->quality, "Solve every case at this quality (draft, normal, high)")
       ->check(CLI::IsMember({"draft", "normal", "high"}));
+  command->add_option("--converge", options->converge,
+                      "Shoot every case until this fraction of its light is unshot (dynrad solve --converge), so that "
+                      "the mesh alone is measured, not where the error estimate stops the solve")
+      ->check(CLI::Range(0.0, 1.0));
   command->add_option("--json", options->json, "Write every compared point and each case's figures here");
   command->add_option("--html", options->html,
                       "Write the validation report here: one HTML page, the tables and each run's work-plane plan");

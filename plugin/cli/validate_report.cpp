@@ -57,7 +57,7 @@ void write_validation_report(const std::string& path, const json& runs, const st
        ".over{color:#b00;font-weight:bold}.ok{color:#070}img{max-width:100%}</style></head><body>\n";
   h << "<h1>CIE 171:2006 analytical test cases</h1>\n";
   h << "<p>dynrad " << html_escape(DYNRAD_VERSION) << ", " << date << ", every solve at " << html_escape(quality)
-    << " quality. Each case was written as a scene, lit by <code>dynrad solve</code> and read back by "
+    << ". Each case was written as a scene, lit by <code>dynrad solve</code> and read back by "
        "<code>dynrad probe</code> (the lit mesh) and the solve's work-plane grids; the references share no code with "
        "the solver.</p>\n";
   h << "<p>A point's error is |value &minus; reference| / reference, or where the reference is below 1% of the case's "

@@ -214,6 +214,46 @@ Case flux_daylight(bool roof) {
   return c;
 }
 
+// CIE 171 5.6: light reflected by one diffuse surface, checked where it arrives. The
+// floor of an open-topped room is the only surface that reflects; the sun at the zenith
+// lights it evenly (the walls, vertical, get none), so its exitance is rho E and a wall
+// point receives rho E times its configuration factor to the floor: the factor of a
+// rectangle perpendicular to the receiving plane, sharpest at the wall's foot.
+Case diffuse_reflection(double reflectance) {
+  Case c;
+  c.id = "5.6";
+  c.variant = fmt::format("reflectance {}", reflectance);
+  c.title = "diffuse reflection (configuration factors)";
+  c.choices = fmt::format(
+      "A 4 x 4 x 3 m room without a ceiling: black walls, a floor of reflectance {} lit by the sun at the zenith with "
+      "100,000 lx (the sky made negligible: uniform, 1e-9 cd/m^2); the walls get no direct light. 24 points on two walls "
+      "from 0.1 to 2.5 m up (the lowest 10 cm above the floor, where the factor changes fastest). Reference: rho E "
+      "times the configuration factor from the point to the floor (Lambert's contour integral).",
+      reflectance);
+  Obj obj("room.mtl");
+  obj.use("floor");
+  obj.flat(0, 0, 4, 4, 0, +1);
+  obj.use("black");
+  obj.side(0, 0, 4, 3, 0, +1);
+  obj.side(0, 0, 4, 3, 4, -1);
+  obj.facade(0, 0, 4, 3, 4, -1);
+  obj.facade(0, 0, 4, 3, 0, +1);
+  c.files = {{"reflection.json", R"({"meshes": [{"file": "room.obj"}],
+  "sky": {"type": "uniform", "zenith_luminance": 1e-9, "ground_reflectance": 0,
+          "sun": {"altitude": 90, "azimuth": 180, "direct_normal": 100000}}})"},
+             {"room.obj", obj.text()},
+             {"room.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl floor\nKd {0} {0} {0}\n", reflectance)}};
+  const std::vector<Vec3d> floor = {Vec3d(0, 0, 0), Vec3d(4, 0, 0), Vec3d(4, 4, 0), Vec3d(0, 4, 0)};
+  const double exitance = reflectance * 100000;
+  c.reference = [floor, exitance](const Vec3d& x, const Vec3d& n) { return exitance * polygon_factor(x, n, floor); };
+  for (double y : {0.5, 1.5, 2.0})
+    for (double z : {0.1, 0.5, 1.0, 2.5}) {
+      c.mesh_points.push_back({Vec3d(0, y, z), Vec3d(1, 0, 0)});
+      c.mesh_points.push_back({Vec3d(4 - y, 4, z), Vec3d(0, -1, 0)});
+    }
+  return c;
+}
+
 // A slab test of the segment from x towards unit d against the box [lo, hi].
 bool hits_box(const Vec3d& lo, const Vec3d& hi, const Vec3d& x, const Vec3d& d) {
   double enter = 1e-9, leave = 1e300;
@@ -368,10 +408,13 @@ Case glass_at(int incidence) {
 enum class Opening { roof, roof_glazed, facade, facade_glazed, facade_overhang, facade_fins };
 
 
-Case daylight(Opening kind, int sky) {
+// `ground` > 0: a grey ground of that reflectance, and points on the walls that see it
+// through the opening (the externally reflected component) beside the floor's.
+Case daylight(Opening kind, int sky, double ground = 0) {
   Case c;
   c.goal = 0.02;
   c.variant = sky == 0 ? "traditional overcast sky" : fmt::format("CIE sky {}", sky);
+  if (ground > 0) c.variant += fmt::format(", ground {}", ground);
   const Rect roof_opening{Vec3d(1.5, 1.5, 3), Vec3d(1, 0, 0), Vec3d(0, 1, 0)};
   const Rect facade_opening{Vec3d(1, 0, 1), Vec3d(2, 0, 0), Vec3d(0, 0, 1)};
   std::vector<Rect> masks;
@@ -432,23 +475,30 @@ Case daylight(Opening kind, int sky) {
       obj.facade(1, 1, 3, 2, 0, +1);
   }
   const std::string sky_json =
-      sky == 0 ? R"({"type": "cie_overcast", "horizontal_illuminance": 10000, "ground_reflectance": 0})"
-               : fmt::format(R"({{"type": "cie", "number": {}, "horizontal_illuminance": 10000, "ground_reflectance": 0,
+      sky == 0 ? fmt::format(R"({{"type": "cie_overcast", "horizontal_illuminance": 10000, "ground_reflectance": {}}})",
+                             ground)
+               : fmt::format(R"({{"type": "cie", "number": {}, "horizontal_illuminance": 10000, "ground_reflectance": {},
           "sun": {{"altitude": 35, "azimuth": 180}}}})",
-                             sky);
+                             sky, ground);
   c.files = {{"daylight.json", R"({"meshes": [{"file": "room.obj"}], "sky": )" + sky_json + R"(, "grids": [)" +
                                    grid_json("work_plane", 0, 0, 4, 4, 0.85, 0.25) + "]}"},
              {"room.obj", obj.text()},
              {"room.mtl", fmt::format("newmtl black\nKd 0 0 0\nnewmtl glass\nKd 0 0 0\nd {}\n", 1 - kGlass)}};
-  c.choices += " A black 4 x 4 x 3 m room, black ground; " +
+  c.choices += std::string(" A black 4 x 4 x 3 m room, ") +
+               (ground > 0 ? fmt::format("a ground of reflectance {} (uniform luminance rho E_h / pi, E_h the "
+                                         "unobstructed horizontal illuminance; 24 wall points see it through the "
+                                         "opening); ",
+                                         ground)
+                           : std::string("black ground; ")) +
                std::string(sky == 0 ? "the traditional CIE overcast sky"
                                     : "the sky's sun at altitude 35 degrees due south (the facade faces south)") +
                ", 10,000 lx on the unobstructed horizontal. Floor points on a 0.5 m grid and a work plane 0.85 m up "
                "(0.25 m grid, from 0.125 m off the walls). Reference: the sky's luminance integrated over the "
                "opening (400 x 400 cells), masks by ray tests.";
+  const double ground_luminance = ground * 10000 / M_PI;
   if (sky == 0) {
-    c.reference = [opening, masks, glass](const Vec3d& x, const Vec3d& n) {
-      return overcast_through(10000, opening, masks, x, n, glass);
+    c.reference = [opening, masks, glass, ground_luminance](const Vec3d& x, const Vec3d& n) {
+      return overcast_through(10000, opening, masks, x, n, glass, ground_luminance);
     };
   } else {
     const double altitude = 35 * M_PI / 180;
@@ -456,12 +506,20 @@ Case daylight(Opening kind, int sky) {
     // The scale to 10,000 lx (a numerical integral over the sky) when first asked for, so
     // that listing or choosing cases costs nothing.
     auto scale = std::make_shared<std::pair<std::once_flag, double>>();
-    c.reference = [general, scale, opening, masks, glass](const Vec3d& x, const Vec3d& n) {
+    c.reference = [general, scale, opening, masks, glass, ground_luminance](const Vec3d& x, const Vec3d& n) {
       std::call_once(scale->first, [&] { scale->second = 10000 / general->horizontal(); });
-      return sky_through(*general, scale->second, opening, masks, x, n, glass);
+      return sky_through(*general, scale->second, opening, masks, x, n, glass, ground_luminance);
     };
   }
   c.mesh_points = floor_points(4, 4, 0.5, 0.25);
+  if (ground > 0) {
+    // The back wall, facing the opening, and a side wall: above the opening's head
+    // they look down through it at the ground, below its sill up at the sky.
+    for (double z : {0.5, 1.5, 2.5}) {
+      for (double x : {0.5, 1.5, 2.5, 3.5}) c.mesh_points.push_back({Vec3d(x, 4, z), Vec3d(0, -1, 0)});
+      for (double y : {0.5, 1.5, 2.5, 3.5}) c.mesh_points.push_back({Vec3d(0, y, z), Vec3d(1, 0, 0)});
+    }
+  }
   c.grids = {"work_plane"};
   return c;
 }
@@ -476,11 +534,17 @@ std::vector<Case> cie171_cases() {
   out.push_back(flux_daylight(true));
   out.push_back(flux_daylight(false));
   for (int incidence = 0; incidence <= 80; incidence += 10) out.push_back(glass_at(incidence));
+  for (double rho : {0.2, 0.5, 0.8}) out.push_back(diffuse_reflection(rho));
   out.push_back(sun_and_obstruction());
   for (double rho : {0.0, 0.2, 0.5, 0.8, 0.95}) out.push_back(cube(rho));
   for (Opening kind : {Opening::roof, Opening::roof_glazed, Opening::facade, Opening::facade_glazed,
                        Opening::facade_overhang, Opening::facade_fins})
+  {
     for (int sky = 0; sky <= 15; ++sky) out.push_back(daylight(kind, sky));
+    // The externally reflected component: the facade openings over a grey ground.
+    if (kind == Opening::facade || kind == Opening::facade_glazed)
+      for (int sky : {0, 12}) out.push_back(daylight(kind, sky, 0.2));
+  }
   return out;
 }
 

@@ -198,13 +198,15 @@ double through(const Luminance& luminance, const Rect& opening, const std::vecto
 }  // namespace
 
 double sky_through(const GeneralSky& sky, double scale, const Rect& opening, const std::vector<Rect>& masks,
-                   const Vec3d& x, const Vec3d& n, double glass) {
-  return through([&](const Vec3d& d) { return scale * sky.relative(d); }, opening, masks, x, n, glass);
+                   const Vec3d& x, const Vec3d& n, double glass, double ground) {
+  return through([&](const Vec3d& d) { return d[2] > 0 ? scale * sky.relative(d) : ground; }, opening, masks, x, n,
+                 glass);
 }
 
 double overcast_through(double horizontal, const Rect& opening, const std::vector<Rect>& masks, const Vec3d& x,
-                        const Vec3d& n, double glass) {
-  return through([&](const Vec3d& d) { return overcast_luminance(horizontal, d); }, opening, masks, x, n, glass);
+                        const Vec3d& n, double glass, double ground) {
+  return through([&](const Vec3d& d) { return d[2] > 0 ? overcast_luminance(horizontal, d) : ground; }, opening,
+                 masks, x, n, glass);
 }
 
 }  // namespace dynrad::validate

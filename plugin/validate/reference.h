@@ -61,13 +61,15 @@ bool blocked(const std::vector<Rect>& masks, const Vec3d& x, const Vec3d& d);
 // Illuminance at x facing n from a sky of luminance L(d) = scale * sky.relative(d)
 // seen through `opening` (and past `masks`), by the midpoint rule on cells of 1 cm of
 // the opening; glazed with clear glass of transmittance `glass` face on when above 0.
+// Below the horizon, a ground of uniform luminance `ground` (cd/m^2): the externally
+// reflected component.
 double sky_through(const GeneralSky& sky, double scale, const Rect& opening, const std::vector<Rect>& masks,
-                   const Vec3d& x, const Vec3d& n, double glass = 0);
+                   const Vec3d& x, const Vec3d& n, double glass = 0, double ground = 0);
 
 // The same for the traditional CIE overcast sky, L = Lz (1 + 2 cos Z) / 3 with Lz such
 // that the unobstructed horizontal illuminance is `horizontal` (Lz = 9 E / (7 pi)).
 double overcast_through(double horizontal, const Rect& opening, const std::vector<Rect>& masks, const Vec3d& x,
-                        const Vec3d& n, double glass = 0);
+                        const Vec3d& n, double glass = 0, double ground = 0);
 
 // The illuminance on a plane facing `n` from the whole unobstructed sky above the
 // horizon, on a 1440 x 720 grid of azimuth and zenith angle: the flux per area that
