@@ -166,6 +166,12 @@ int run_info(const InfoOptions& options) {
     for (const rad::Luminaire& l : daylight) j["daylight"].push_back(l.describe());
     j["glazing_triangles"] = scene.glazing.size();
     j["opening_triangles"] = scene.openings.size();
+    j["openings"] = nlohmann::json::array();  // each triangle's corners, model units
+    for (const auto& t : scene.openings) {
+      nlohmann::json corners = nlohmann::json::array();
+      for (const Vec3d& c : t) corners.push_back({c[0], c[1], c[2]});
+      j["openings"].push_back(corners);
+    }
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), luminaire_warnings.begin(), luminaire_warnings.end());
     j["warnings"] = warnings;

@@ -6,7 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <tuple>
 #include <ctime>
 #include <map>
 #include <sstream>
@@ -27,6 +30,65 @@ struct Section {
   double worst = 0, strict = 0, goal = 0, cie = 0;
   bool passed = true;
 };
+
+// An SVG chart of a run's points: each point's error (vertical, %) against its reference
+// (horizontal, on a log scale; points whose reference is 0, in a shadow, at the left
+// edge), with the goal and CIE 171's tolerance as lines. Where the errors lie relative
+// to the light shows what a table cannot: an error in deep shade or at the brightest
+// points, one outlier or a spread.
+std::string error_chart(const json& points, double goal, double cie) {
+  const double width = 640, height = 220, left = 56, right = 24, top = 10, bottom = 36;
+  double lo = 1e300, hi = 0, top_error = 1.25 * goal;
+  for (const json& p : points) {
+    const double ref = p["reference"].get<double>(), error = p["error"].get<double>();
+    if (ref > 0) lo = std::min(lo, ref), hi = std::max(hi, ref);
+    top_error = std::max(top_error, error);
+  }
+  if (!(hi > 0)) lo = 1, hi = 10;
+  double decade_lo = std::floor(std::log10(lo)), decade_hi = std::ceil(std::log10(hi));
+  if (decade_hi <= decade_lo) decade_hi = decade_lo + 1;
+  top_error = std::min(top_error, std::max(4 * cie, 1.25 * goal));  // larger errors sit on the top edge
+  const double plot_w = width - left - right, plot_h = height - top - bottom;
+  auto x_of = [&](double ref) {
+    if (!(ref > 0)) return left;
+    return left + plot_w * (std::log10(ref) - decade_lo) / (decade_hi - decade_lo);
+  };
+  auto y_of = [&](double error) { return top + plot_h * (1 - std::min(error, top_error) / top_error); };
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+      "font-family=\"sans-serif\" font-size=\"11\">",
+      width, height);
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#fafafa\" stroke=\"#999\"/>", left, top,
+                   plot_w, plot_h);
+  for (double d = decade_lo; d <= decade_hi + 1e-9; d += 1) {
+    const double x = left + plot_w * (d - decade_lo) / (decade_hi - decade_lo);
+    s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"#ddd\"/>", x, top, top + plot_h);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>", x, height - bottom + 14,
+                     std::pow(10.0, d));
+  }
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">reference (lx; lm for areas)</text>",
+                   left + plot_w / 2, height - 4);
+  for (const auto& [level, colour, name] :
+       {std::tuple{goal, "#070", "goal"}, std::tuple{cie, "#888", "CIE"}}) {
+    if (level > top_error) continue;
+    const double y = y_of(level);
+    s += fmt::format("<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"{3}\" stroke-dasharray=\"5 3\"/>", left,
+                     left + plot_w, y, colour);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\" fill=\"{}\">{} {:g}%</text>", left + plot_w - 4,
+                     y - 3, colour, name, 100 * level);
+  }
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">0%</text>", left - 4, top + plot_h);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2g}%</text>", left - 4, top + 10,
+                   100 * top_error);
+  s += fmt::format("<text x=\"12\" y=\"{0}\" transform=\"rotate(-90 12 {0})\" text-anchor=\"middle\">error</text>",
+                   top + plot_h / 2);
+  for (const json& p : points) {
+    const double error = p["error"].get<double>();
+    s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.2\" fill=\"{}\"/>", x_of(p["reference"].get<double>()),
+                     y_of(error), error > goal ? "#c00" : "#246");
+  }
+  return s + "</svg>";
+}
 
 }  // namespace
 
@@ -62,7 +124,9 @@ void write_validation_report(const std::string& path, const json& runs, const st
        "the solver.</p>\n";
   h << "<p>A point's error is |value &minus; reference| / reference, or where the reference is below 1% of the case's "
        "largest (shade), / that 1%; \"strict\" is against the reference alone. Goals (this project's): 1% for "
-       "5.2&ndash;5.8, 2% for 5.9&ndash;5.14; CIE 171's tolerance: 5%.</p>\n";
+       "5.2&ndash;5.8, 2% for 5.9&ndash;5.14; CIE 171's tolerance: 5%. Each run's chart shows every point's error "
+       "against its reference (a log scale; points in a shadow, of reference 0, at the left edge), the goal and CIE's "
+       "tolerance dashed; points over the goal are red. A run with a work plane shows its false-colour plan too.</p>\n";
   h << "<h2>Summary</h2>\n<table><tr><th>case</th><th>what</th><th>runs</th><th>points</th><th>worst</th>"
        "<th>strict worst</th><th>goal</th><th>CIE</th><th></th></tr>\n";
   for (const Section& s : sections)
@@ -92,6 +156,8 @@ void write_validation_report(const std::string& path, const json& runs, const st
         << fmt::format("{:.1f} s", r["seconds"].get<double>()) << "</td></tr>";
     }
     h << "</table>\n";
+    if (r["failure"].get<std::string>().empty() && !r["points"].empty())
+      h << "<p>" << error_chart(r["points"], r["goal"].get<double>(), r["cie_tolerance"].get<double>()) << "</p>\n";
     if (r["picture"].is_string())
       h << "<img alt=\"" << html_escape(id + " work plane") << "\" src=\"data:image/png;base64,"
         << base64(detail::read_file(r["picture"].get<std::string>())) << "\">\n";
