@@ -50,6 +50,16 @@ class Obj {
   int count_ = 0;
 };
 
+// The four vertical sides of the box [x0, x1] x [y0, y1] x [z0, z1], facing out of it
+// (`outward`) or into it.
+void box_sides(Obj& obj, double x0, double y0, double x1, double y1, double z0, double z1, bool outward) {
+  const int s = outward ? -1 : +1;
+  obj.side(y0, z0, y1, z1, x0, s);
+  obj.side(y0, z0, y1, z1, x1, -s);
+  obj.facade(x0, z0, x1, z1, y0, s);
+  obj.facade(x0, z0, x1, z1, y1, -s);
+}
+
 // A room [0, w] x [0, d] x [0, h] facing inwards. `ceiling_hole` and `facade_hole`
 // (x0, a0, x1, a1: the ceiling's x and y, the facade's x and z) cut an opening, when
 // not empty, in the ceiling or in the wall y = 0.
@@ -234,10 +244,7 @@ Case diffuse_reflection(double reflectance) {
   obj.use("floor");
   obj.flat(0, 0, 4, 4, 0, +1);
   obj.use("black");
-  obj.side(0, 0, 4, 3, 0, +1);
-  obj.side(0, 0, 4, 3, 4, -1);
-  obj.facade(0, 0, 4, 3, 4, -1);
-  obj.facade(0, 0, 4, 3, 0, +1);
+  box_sides(obj, 0, 0, 4, 4, 0, 3, false);
   c.files = {{"reflection.json", R"({"meshes": [{"file": "room.obj"}],
   "sky": {"type": "uniform", "zenith_luminance": 1e-9, "ground_reflectance": 0,
           "sun": {"altitude": 90, "azimuth": 180, "direct_normal": 100000}}})"},
@@ -284,10 +291,7 @@ Case sun_and_obstruction() {
   obj.flat(0, 0, 10, 10, 0, +1);
   const Vec3d lo(4.5, 4.5, 0), hi(5.5, 5.5, 1);
   obj.flat(4.5, 4.5, 5.5, 5.5, 1, +1);
-  obj.side(4.5, 0, 5.5, 1, 4.5, -1);
-  obj.side(4.5, 0, 5.5, 1, 5.5, +1);
-  obj.facade(4.5, 0, 5.5, 1, 4.5, -1);
-  obj.facade(4.5, 0, 5.5, 1, 5.5, +1);
+  box_sides(obj, 4.5, 4.5, 5.5, 5.5, 0, 1, true);
   c.files = {{"sun.json", R"({"meshes": [{"file": "block.obj"}],
   "sky": {"type": "uniform", "zenith_luminance": 1e-9, "ground_reflectance": 0,
           "sun": {"altitude": 30, "azimuth": 225, "direct_normal": 100000}}})"},
