@@ -26,6 +26,9 @@
 //   for the first pane it crosses. A point beside a wall sees an opening in that wall as
 //   a sliver along the wall's plane, which the hemisphere's directions below missed:
 //   27-52% low 0.125-0.25 m from a facade (CIE 171 test 5.11's room, tests/daylight_test.cpp).
+//   Strata a mask's edge crosses take sub-strata; a pane seen only through a thin gap
+//   past a mask (or only at a corner) is integrated again on finer strata where it could
+//   matter to x (CIE 171 test 5.13's floor under an overhang).
 // - The rest of the hemisphere: side x side strata of cosine-weighted directions, E = pi x
 //   their mean, each stratum by its centre, except those where a neighbour sees
 //   otherwise (the edge of a surface against the open sky, of a small pane), which take
