@@ -2,6 +2,7 @@
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 namespace dynrad {
@@ -45,6 +46,23 @@ TEST(Validate, ConvergePassesToEverySolve) {
   EXPECT_NE(r.output.find("shot until 0.01% of the light is unshot"), std::string::npos) << r.output;
   const auto report = nlohmann::json::parse(test::read_text(dir.path("work/00_5.6_reflectance_0.5/report.json")));
   EXPECT_EQ(report["stopped_by"], "converged") << report.dump();
+}
+
+// A first SIGINT ends the run after the case under way: what was done is reported and
+// written, the work folder removed, and the exit status says it was interrupted.
+TEST(Validate, AnInterruptedRunKeepsWhatItDidAndCleansUp) {
+  test::TempDir dir;
+  const auto r = test::run_dynrad_and_signal("validate --case 5.9 --json '" + dir.path("v.json") + "'", 2, "INT",
+                                             "5.9 ");
+  EXPECT_NE(r.output.find("exit=3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interrupted after"), std::string::npos) << r.output;
+  const auto runs = nlohmann::json::parse(test::read_text(dir.path("v.json")));
+  EXPECT_GE(runs.size(), 1u);
+  EXPECT_LT(runs.size(), 16u);
+  const auto at = r.output.find("(work in ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string work = r.output.substr(at + 9, r.output.find(')', at) - at - 9);
+  EXPECT_FALSE(std::filesystem::exists(work)) << work;
 }
 
 TEST(Validate, AnUnknownCaseIsNamed) {

@@ -22,7 +22,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,6 +34,16 @@ extern char** environ;
 
 namespace dynrad::cli {
 namespace {
+
+// A first SIGINT/SIGTERM stops the run after the current case (whose solve, which gets
+// the signal too, stops early and is left out); the default action is then restored,
+// so a second one ends the program at once. What is done so far is reported and
+// written, and the work folder removed unless kept.
+std::atomic<bool> g_validate_stop{false};
+extern "C" void on_validate_signal(int signal_number) {
+  g_validate_stop.store(true);
+  std::signal(signal_number, SIG_DFL);
+}
 
 namespace fs = std::filesystem;
 
@@ -247,12 +259,16 @@ int run_validate(const ValidateOptions& options) {
                            "points", "worst", "mean", "goal", "CIE", "strict", "worst at");
   std::vector<Outcome> outcomes;
   bool all_passed = true;
+  g_validate_stop.store(false);
+  std::signal(SIGINT, on_validate_signal);
+  std::signal(SIGTERM, on_validate_signal);
   for (std::size_t k = 0; k < chosen.size(); ++k) {
     const validate::Case& c = *chosen[k];
     std::string folder = fmt::format("{:02}_{}_{}", k, c.id, c.variant);
     for (char& ch : folder)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '_') ch = '_';
     Outcome o = run_case(c, base / folder, options);
+    if (g_validate_stop.load()) break;
     all_passed = all_passed && o.passed();
     if (!o.failure.empty())
       std::cout << fmt::format("{:<5} {:<40} {:<34} FAILED: {}\n", c.id, c.title, c.variant, o.failure);
@@ -290,6 +306,12 @@ int run_validate(const ValidateOptions& options) {
     }
   }
   if (options.keep.empty()) fs::remove_all(base);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (g_validate_stop.load()) {
+    std::cout << fmt::format("interrupted after {} of {} runs\n", outcomes.size(), chosen.size());
+    return kExitInterrupted;
+  }
   std::cout << (all_passed ? "every case within its goal\n" : "some cases are over their goal\n");
   return all_passed ? kExitOk : kExitValidation;
 }
