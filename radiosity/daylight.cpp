@@ -201,7 +201,8 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
   for (const Portal& p : panes) total += p.triangle.area;
   struct Sample {
     double value = 0, below = 0;
-    int code = -1;  // -1: counts nothing (blocked, another pane's, below x's plane); 1: seen
+    int code = -1;      // -1: counts nothing (blocked, another pane's, below x's plane); 1: seen
+    bool edge = false;  // a neighbouring stratum's code differs
   };
   struct Part {
     double value = 0, below = 0;  // the integral over the pane
@@ -239,19 +240,16 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
     // against 52.7 s with 2 x 2. Few edge strata are a thin sliver of sky or a thin
     // mask, where each matters most; many are a large visible part, where 2 x 2 is
     // enough.)
-    std::vector<char> edge(grid.size(), 0);
     std::size_t edges = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {
-        const Sample& c = grid[static_cast<std::size_t>(i * side + j)];
-        bool differs = false;
+        Sample& c = grid[static_cast<std::size_t>(i * side + j)];
         for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
           const int i2 = i + di, j2 = j + dj;
           if (i2 < 0 || i2 >= side || j2 < 0 || j2 >= side) continue;
-          differs = differs || grid[static_cast<std::size_t>(i2 * side + j2)].code != c.code;
+          c.edge = c.edge || grid[static_cast<std::size_t>(i2 * side + j2)].code != c.code;
         }
-        edge[static_cast<std::size_t>(i * side + j)] = differs;
-        edges += differs;
+        edges += c.edge;
       }
     const int m = edges == 0 ? 1
                              : std::clamp(static_cast<int>(std::sqrt(static_cast<double>(side) * side / edges)), 2, 8);
@@ -259,7 +257,7 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {
         const Sample& c = grid[static_cast<std::size_t>(i * side + j)];
-        if (!edge[static_cast<std::size_t>(i * side + j)]) {
+        if (!c.edge) {
           sum += c.value;
           sum_below += c.below;
           continue;
@@ -281,7 +279,7 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
   // stratum.
   auto seen_at_a_corner = [&](const Portal& p) {
     const auto& c = glazing.pane(p.pane);
-    const Vec3d centre = (c[0] + c[1] + c[2]) / 3.0;
+    const Vec3d& centre = glazing.centre(p.pane);
     for (int k = 0; k < 3; ++k) {
       const Vec3d on = c[k] + (centre - c[k]) * 1e-3;
       const Vec3d d = (on - x).normalized();

@@ -3,11 +3,11 @@
 
     build/plugin/dynrad validate --json v.json && scripts/validation_table.py v.json
 
-One row per section (5.2, 5.3, ...; the facade openings over a grey ground apart): its runs and points, the worst error of the lit
-mesh's points, of the grids' points and of the area (flux) checks, the mean over all
-its points, the goal, CIE 171's tolerance, the worst error against the reference alone
-("strict"), and the seconds its solves and probes took, summed. A section with a run
-over its goal is marked.
+One row per section and title (5.2, 5.3, ...; the facade openings over a grey ground
+apart): its runs and points, the worst error of the lit mesh's points, of the grids'
+points and of the area (flux) checks, the mean over all its points, the goal, CIE 171's
+tolerance, the worst error against the reference alone ("strict"), and the seconds its
+solves and probes took, summed. A section with a run over its goal is marked.
 """
 import json
 import sys
@@ -19,10 +19,7 @@ def main():
     runs = json.load(open(sys.argv[1]))
     sections = []
     for run in runs:
-        # The grey-ground variants of the facade openings (the externally reflected
-        # component, at wall points too) get a row of their own.
-        ground = "ground" in run["variant"]
-        title = run["title"] + (", grey ground" if ground else "")
+        title = run["title"]  # a section's runs over a grey ground have a title of their own
         if not sections or (sections[-1]["id"], sections[-1]["title"]) != (run["case"], title):
             sections.append({"id": run["case"], "title": title, "runs": 0, "points": 0, "mesh": None,
                              "grid": None, "area": None, "sum": 0.0, "strict": 0.0, "goal": run["goal"],

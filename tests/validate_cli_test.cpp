@@ -35,9 +35,10 @@ TEST(Validate, ReportsEveryPointAndWritesAReportWithAPlanPerRun) {
   EXPECT_EQ(html.find("fill=\"#c00\""), std::string::npos);
 }
 
-// 5.6's black walls take the floor's reflection: shot to convergence (--converge) at high quality they
-// are within the goal where the defaults' stop, by a mean error the bright floor
-// dominates, leaves them short (docs/validation.md). The solves must get the option.
+// 5.6's black walls take the floor's reflection: shot to convergence (--converge) at
+// high quality they are within the goal, where the defaults' stop, by a mean error the
+// bright floor dominates, leaves them short (docs/validation.md). The solves must get
+// the option.
 TEST(Validate, ConvergePassesToEverySolve) {
   test::TempDir dir;
   const auto r = test::run_dynrad("validate --case \"5.6 reflectance 0.5\" --quality high --converge 1e-4 --keep '" +

@@ -259,9 +259,18 @@ int run_validate(const ValidateOptions& options) {
                            "points", "worst", "mean", "goal", "CIE", "strict", "worst at");
   std::vector<Outcome> outcomes;
   bool all_passed = true;
-  g_validate_stop.store(false);
-  std::signal(SIGINT, on_validate_signal);
-  std::signal(SIGTERM, on_validate_signal);
+  // The handlers hold while the cases run, and go however this function ends.
+  struct SignalGuard {
+    SignalGuard() {
+      g_validate_stop.store(false);
+      std::signal(SIGINT, on_validate_signal);
+      std::signal(SIGTERM, on_validate_signal);
+    }
+    ~SignalGuard() {
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
+    }
+  } signals;
   for (std::size_t k = 0; k < chosen.size(); ++k) {
     const validate::Case& c = *chosen[k];
     std::string folder = fmt::format("{:02}_{}_{}", k, c.id, c.variant);
@@ -306,8 +315,6 @@ int run_validate(const ValidateOptions& options) {
     }
   }
   if (options.keep.empty()) fs::remove_all(base);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
   if (g_validate_stop.load()) {
     std::cout << fmt::format("interrupted after {} of {} runs\n", outcomes.size(), chosen.size());
     return kExitInterrupted;

@@ -9,10 +9,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <tuple>
 #include <ctime>
-#include <map>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace dynrad::cli {
@@ -23,7 +22,8 @@ using json = nlohmann::json;
 
 std::string percent(double v) { return fmt::format("{:.3f}%", 100 * v); }
 
-// Per section (5.2, 5.3, ...), in order: runs, points, worst, strict worst, all passed.
+// Per section (5.2, 5.3, ...; a section's runs over a grey ground apart, by their title),
+// in order: runs, points, worst, strict worst, all passed.
 struct Section {
   std::string id, title;
   std::size_t runs = 0, points = 0;
@@ -95,7 +95,8 @@ std::string error_chart(const json& points, double goal, double cie) {
 void write_validation_report(const std::string& path, const json& runs, const std::string& quality) {
   std::vector<Section> sections;
   for (const json& r : runs) {
-    if (sections.empty() || sections.back().id != r["case"].get<std::string>()) {
+    if (sections.empty() || sections.back().id != r["case"].get<std::string>() ||
+        sections.back().title != r["title"].get<std::string>()) {
       sections.push_back({});
       sections.back().id = r["case"].get<std::string>();
       sections.back().title = r["title"].get<std::string>();
@@ -138,8 +139,8 @@ void write_validation_report(const std::string& path, const json& runs, const st
   std::string section;
   for (const json& r : runs) {
     const std::string id = r["case"].get<std::string>();
-    if (id != section) {
-      section = id;
+    if (id + " " + r["title"].get<std::string>() != section) {
+      section = id + " " + r["title"].get<std::string>();
       h << "<h3>" << html_escape(id + " " + r["title"].get<std::string>()) << "</h3>\n<p>"
         << html_escape(r["choices"].get<std::string>()) << "</p>\n";
     }

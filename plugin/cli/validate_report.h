@@ -1,6 +1,7 @@
 // `dynrad validate --html FILE`: the validation as one HTML page a designer can attach
 // to a project: how points are judged, a table per section of CIE 171, and per run its
-// figures, the choices made and the false-colour plan of its work plane (embedded PNG).
+// figures, the choices made, a chart of its points' errors (SVG) and the false-colour
+// plan of its work plane (embedded PNG).
 #pragma once
 
 #include <nlohmann/json.hpp>

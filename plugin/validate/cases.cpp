@@ -517,6 +517,7 @@ Case daylight(Opening kind, int sky, double ground = 0) {
   }
   c.mesh_points = floor_points(4, 4, 0.5, 0.25);
   if (ground > 0) {
+    c.title += ", grey ground";  // a section of its own in the tables
     // The back wall, facing the opening, and a side wall: above the opening's head
     // they look down through it at the ground, below its sill up at the sky.
     for (double z : {0.5, 1.5, 2.5}) {
@@ -542,8 +543,7 @@ std::vector<Case> cie171_cases() {
   out.push_back(sun_and_obstruction());
   for (double rho : {0.0, 0.2, 0.5, 0.8, 0.95}) out.push_back(cube(rho));
   for (Opening kind : {Opening::roof, Opening::roof_glazed, Opening::facade, Opening::facade_glazed,
-                       Opening::facade_overhang, Opening::facade_fins})
-  {
+                       Opening::facade_overhang, Opening::facade_fins}) {
     for (int sky = 0; sky <= 15; ++sky) out.push_back(daylight(kind, sky));
     // The externally reflected component: the facade openings over a grey ground.
     if (kind == Opening::facade || kind == Opening::facade_glazed)
