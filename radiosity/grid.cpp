@@ -16,7 +16,7 @@ namespace dynrad::rad {
 
 namespace {
 
-double distance_to_edges(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+double edge_distance(const std::vector<std::array<double, 2>>& poly, double x, double y) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const double ax = poly[j][0], ay = poly[j][1], bx = poly[i][0], by = poly[i][1];
@@ -35,6 +35,10 @@ void frame(const Vec3d& n, Vec3d& t, Vec3d& b) {
 
 }  // namespace
 
+double polygon_edge_distance(const std::vector<std::array<double, 2>>& polygon, double x, double y) {
+  return edge_distance(polygon, x, y);
+}
+
 bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -43,6 +47,14 @@ bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, do
     if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
   }
   return in;
+}
+
+double surrounding_illuminance(double task_eavg) {
+  if (task_eavg >= 750) return 500;
+  if (task_eavg >= 500) return 300;
+  if (task_eavg >= 300) return 200;
+  if (task_eavg >= 200) return 150;
+  return task_eavg;
 }
 
 double automatic_spacing(double longer_side) {
@@ -74,7 +86,7 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::
       const double x = lo[0] + spec.border + (i + 0.5) * w / nx;
       const double y = lo[1] + spec.border + (j + 0.5) * d / ny;
       if (!inside_polygon(spec.polygon, x, y)) continue;
-      if (spec.border > 0 && distance_to_edges(spec.polygon, x, y) < spec.border - 1e-12) continue;
+      if (spec.border > 0 && edge_distance(spec.polygon, x, y) < spec.border - 1e-12) continue;
       Vec3d v(0.0);
       v[a] = x;
       v[b] = y;
@@ -157,6 +169,64 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
   indirect = indirect * (1.0 / (static_cast<double>(side) * side));
   out.direct = direct.luminance();
   out.indirect = indirect.luminance();
+  out.illuminance = out.direct + out.indirect;
+  return out;
+}
+
+GridPointResult gather_cylindrical(const LitScene& scene, const Vec3d& point, const Vec3d& up,
+                                   const GatherOptions& options, std::uint64_t point_seed) {
+  // Ez = (1/pi) integral of L sin(theta) over the sphere, theta from `up`: the mean over
+  // azimuths of the vertical illuminance.
+  const Visibility& vis = *scene.visibility;
+  GridPointResult out;
+  out.position = point;
+  Vec3d t, b;
+  frame(up, t, b);
+  std::uint64_t state = mix(point_seed);
+  double direct = 0, indirect = 0;
+  for (std::size_t k = 0; k < scene.luminaires.size(); ++k) {
+    const Luminaire& l = scene.luminaires[k];
+    if (l.kind == Luminaire::Kind::sky) {
+      // A smooth sky: the mean of eight vertical illuminances (each a quarter of the
+      // grid's directions).
+      const int side = std::max(2, options.side / 2);
+      double sum = 0;
+      for (int a = 0; a < 8; ++a) {
+        const double phi = a * M_PI / 4;
+        sum += daylight_illuminance(&vis, l, point, t * std::cos(phi) + b * std::sin(phi), nullptr, side);
+      }
+      direct += l.colour.luminance() * sum / 8;
+      continue;
+    }
+    // A point or the sun: I sin(theta) / (pi d^2), the illuminance on the vertical plane
+    // facing it across, over pi. Straight above or below, nothing.
+    const Vec3d towards = l.kind == Luminaire::Kind::sun ? l.daylight->sun : l.position - point;
+    const Vec3d across = towards - up * OpenMesh::dot(towards, up);
+    if (across.norm() <= 1e-9 * towards.norm()) continue;
+    direct += l.colour.luminance() *
+              luminaire_illuminance(&vis, l, point, across.normalized(), mix(point_seed ^ mix(k + 1)), nullptr) / M_PI;
+  }
+  // Surfaces, emitting or reflecting, by stratified directions uniform over the sphere:
+  // each gives (4 / pi) B sin(theta).
+  const int side = std::max(1, options.side);
+  double emitted = 0;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const double z = 1 - 2 * (i + uniform(state)) / side, phi = 2 * M_PI * (j + uniform(state)) / side;
+      const double s = std::sqrt(std::max(0.0, 1 - z * z));
+      const Vec3d dir = t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + up * z;
+      const Visibility::Intersection hit = vis.intersect(point, dir);
+      if (!hit.hit || !hit.front) continue;
+      const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
+      const Rgb radiosity = scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
+                            scene.radiosity[tri[2]] * hit.v;
+      const Rgb& emission = scene.emission[static_cast<std::size_t>(hit.face)];
+      emitted += 4 / M_PI * s * emission.luminance();
+      indirect += 4 / M_PI * s * (radiosity - emission).luminance();
+    }
+  const double n = static_cast<double>(side) * side;
+  out.direct = direct + emitted / n;
+  out.indirect = indirect / n;
   out.illuminance = out.direct + out.indirect;
   return out;
 }

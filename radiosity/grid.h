@@ -30,6 +30,31 @@
 
 namespace dynrad::rad {
 
+// EN 12464-1:2021 requirements of the room a grid's task area lies in, beyond the task
+// area's own Eavg and U0 (design/room_checks.h evaluates them); every one off unless the
+// scene file's "target" asks for it. Defaults are the standard's general values.
+struct RoomTargets {
+  // The immediate surrounding: a band this wide just outside the task area, inside the
+  // polygon (between border - surrounding and border from its edges). 0: not checked.
+  double surrounding = 0;
+  double surrounding_eavg = 0;  // 0: from the task's target by EN 12464-1's table
+  double surrounding_u0 = 0.4;
+  // Walls and ceiling of the room (the polygon raised from the floor to the ceiling).
+  bool walls = false, ceiling = false;
+  double walls_eavg = 75, walls_u0 = 0.1, ceiling_eavg = 50, ceiling_u0 = 0.1;
+  // Mean cylindrical illuminance over the task area at `ez_height` above the floor
+  // (1.2 m seated, 1.6 m standing), its uniformity, and modelling Ez / Eh within
+  // [modelling_low, modelling_high]. 0: not checked.
+  double ez = 0, ez_u0 = 0.1, ez_height = 1.2, modelling_low = 0.3, modelling_high = 0.6;
+  // UGR limit for the observers standing in the room. 0: not checked.
+  double ugr = 0;
+  bool any() const { return surrounding > 0 || walls || ceiling || ez > 0 || ugr > 0; }
+};
+
+// The surrounding's Em for a task's by EN 12464-1's table: 500 lx for tasks of 750 lx
+// and above, 300 for 500, 200 for 300, 150 for 200, and the task's own below that.
+double surrounding_illuminance(double task_eavg);
+
 struct GridSpec {
   std::string name;
   std::vector<std::array<double, 2>> polygon;  // in the plane's axes (x, y for z up), counter-clockwise or not
@@ -40,6 +65,7 @@ struct GridSpec {
   // Requirements to check (0: none): the average illuminance at least target_eavg,
   // U0 at least target_u0.
   double target_eavg = 0, target_u0 = 0;
+  RoomTargets room;
 };
 
 // The automatic spacing for a longer side d: 0.2 x 5^log10(d), at most 10.
@@ -47,6 +73,9 @@ double automatic_spacing(double longer_side);
 
 // Whether (x, y) lies inside `polygon` (even-odd rule).
 bool inside_polygon(const std::vector<std::array<double, 2>>& polygon, double x, double y);
+
+// Shortest distance from (x, y) to the polygon's edges.
+double polygon_edge_distance(const std::vector<std::array<double, 2>>& polygon, double x, double y);
 
 // The cells: nx x ny over the rectangle [x0, x0 + nx w] x [y0, y0 + ny h] (the polygon's
 // bounding rectangle less the border), in the plane's two axes.
@@ -104,6 +133,14 @@ struct GridResult {
     return (spec.target_eavg <= 0 || e_avg >= spec.target_eavg) && (spec.target_u0 <= 0 || u0 >= spec.target_u0);
   }
 };
+
+// The cylindrical illuminance at `point` about the axis `up` (EN 12464-1's Ez: the mean
+// of the vertical illuminance over all directions around): luminaires and the sun exact
+// (I sin(theta) / (pi d^2), one shadow ray, openings sampled as for grids), a sky as
+// the mean of eight vertical illuminances, surfaces by side x side stratified
+// directions uniform over the sphere. In `illuminance`, split into direct and indirect.
+GridPointResult gather_cylindrical(const LitScene& scene, const Vec3d& point, const Vec3d& up,
+                                   const GatherOptions& options, std::uint64_t point_seed);
 
 GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options = {});
 

@@ -9,8 +9,21 @@
 //                side, metres assumed
 //   "border"     band along the edges left out (default 0)
 //   "up"         "x", "y" or "z" (default "z")
-//   "target"     {"Eavg": E, "U0": u}, either or both: the requirement to check
-//                (EN 12464-1 gives the maintained illuminance and U0 per task)
+//   "target"     the requirements to check (EN 12464-1 gives them per task; every key
+//                optional):
+//     "Eavg", "U0"     maintained illuminance and uniformity of the task area (the
+//                      points the border leaves)
+//     "surrounding"    true or {"width": 0.5, "Eavg": E, "U0": 0.4}: the immediate
+//                      surrounding, a band `width` wide just outside the task area
+//                      (needs a border); Eavg by default from the task's by the
+//                      standard's table (design/room_checks.h)
+//     "walls"          true or {"Eavg": 75, "U0": 0.1}: the room's walls, the polygon's
+//                      sides from the floor to the ceiling
+//     "ceiling"        true or {"Eavg": 50, "U0": 0.1}
+//     "Ez"             E or {"Eavg": E, "U0": 0.1, "height": 1.2, "modelling": [0.3, 0.6]}:
+//                      mean cylindrical illuminance over the task area at `height` above
+//                      the floor, and modelling Ez / Eh
+//     "UGR"            limit for the observers (the scene's "observers") in the polygon
 //
 // Unknown keys are errors.
 #include "mesh/error.h"
@@ -114,8 +127,10 @@ class GridParser {
     }
     if (e.contains("target")) {
       const json& t = e["target"];
-      if (!t.is_object() || t.empty()) fail(named + ".target must be {\"Eavg\": E, \"U0\": u} (either or both).");
+      if (!t.is_object() || t.empty())
+        fail(named + ".target must be an object such as {\"Eavg\": 500, \"U0\": 0.6}.");
       for (const auto& item : t.items()) {
+        if (room_target(item.key(), item.value(), named + ".target." + item.key(), g)) continue;
         const double x = number(item.value(), named + ".target." + item.key());
         if (item.key() == "Eavg") {
           if (!(x > 0)) fail(named + ".target.Eavg must be above 0.");
@@ -124,7 +139,8 @@ class GridParser {
           if (!(x > 0 && x <= 1)) fail(named + ".target.U0 must be above 0 and at most 1.");
           g.target_u0 = x;
         } else {
-          fail("unknown key \"" + item.key() + "\" in " + named + ".target (known keys: Eavg, U0).");
+          fail("unknown key \"" + item.key() + "\" in " + named +
+               ".target (known keys: Eavg, U0, surrounding, walls, ceiling, Ez, UGR).");
         }
       }
     }
@@ -142,7 +158,81 @@ class GridParser {
     const std::size_t count = grid_points(g).size();
     if (count > 1000000) fail(named + " would have more than a million points; give a larger \"spacing\".");
     if (count == 0) fail(named + " has no point: its border leaves nothing of the polygon.");
+    if (g.room.surrounding > 0 && !(g.border > 0))
+      fail(named + ".target.surrounding needs a \"border\": the surrounding band lies between the task area (the "
+                   "polygon less its border) and the polygon's edge. Give the grid the room's outline as its polygon "
+                   "and a border of at least the band's width (0.5 m).");
     return g;
+  }
+
+  // The room's requirements (RoomTargets); false when `key` is not one of them.
+  bool room_target(const std::string& key, const json& v, const std::string& where, GridSpec& g) const {
+    RoomTargets& r = g.room;
+    // true, or an object of numbers with the given keys, each checked by `read`.
+    auto object = [&](const std::set<std::string>& keys, auto read) {
+      if (v.is_boolean()) {
+        if (!v.get<bool>()) fail(where + " must be true or an object; leave it out to skip the check.");
+        return;
+      }
+      if (!v.is_object()) fail(where + " must be true or an object.");
+      for (const auto& item : v.items()) {
+        if (!keys.count(item.key())) {
+          std::string list;
+          for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
+          fail("unknown key \"" + item.key() + "\" in " + where + " (known keys: " + list + ").");
+        }
+        read(item.key(), item.value(), where + "." + item.key());
+      }
+    };
+    auto positive = [&](const json& x, const std::string& at) {
+      const double y = number(x, at);
+      if (!(y > 0)) fail(at + " must be above 0.");
+      return y;
+    };
+    auto fraction = [&](const json& x, const std::string& at) {
+      const double y = number(x, at);
+      if (!(y > 0 && y <= 1)) fail(at + " must be above 0 and at most 1.");
+      return y;
+    };
+    if (key == "surrounding") {
+      r.surrounding = 0.5;
+      object({"width", "Eavg", "U0"}, [&](const std::string& k, const json& x, const std::string& at) {
+        if (k == "width") r.surrounding = positive(x, at);
+        if (k == "Eavg") r.surrounding_eavg = positive(x, at);
+        if (k == "U0") r.surrounding_u0 = fraction(x, at);
+      });
+    } else if (key == "walls" || key == "ceiling") {
+      const bool walls = key == "walls";
+      (walls ? r.walls : r.ceiling) = true;
+      object({"Eavg", "U0"}, [&](const std::string& k, const json& x, const std::string& at) {
+        if (k == "Eavg") (walls ? r.walls_eavg : r.ceiling_eavg) = positive(x, at);
+        if (k == "U0") (walls ? r.walls_u0 : r.ceiling_u0) = fraction(x, at);
+      });
+    } else if (key == "Ez") {
+      if (v.is_number()) {
+        r.ez = positive(v, where);
+        return true;
+      }
+      if (!v.is_object() || !v.contains("Eavg")) fail(where + " must be a number (lx) or an object with \"Eavg\".");
+      object({"Eavg", "U0", "height", "modelling"}, [&](const std::string& k, const json& x, const std::string& at) {
+        if (k == "Eavg") r.ez = positive(x, at);
+        if (k == "U0") r.ez_u0 = fraction(x, at);
+        if (k == "height") r.ez_height = positive(x, at);
+        if (k == "modelling") {
+          if (!x.is_array() || x.size() != 2) fail(at + " must be [low, high], such as [0.3, 0.6].");
+          r.modelling_low = number(x[0], at + "[0]");
+          r.modelling_high = number(x[1], at + "[1]");
+          if (!(r.modelling_low >= 0 && r.modelling_high > r.modelling_low))
+            fail(at + " must be [low, high] with 0 <= low < high.");
+        }
+      });
+    } else if (key == "UGR") {
+      r.ugr = number(v, where);
+      if (!(r.ugr > 0 && r.ugr <= 40)) fail(where + " must be a UGR limit above 0 and at most 40 (19 for offices).");
+    } else {
+      return false;
+    }
+    return true;
   }
 
   std::string path_;

@@ -52,6 +52,13 @@ struct Luminaire {
   double intensity = 0;
   double inner = 0, outer = 0;
 
+  // For the lighting designer: the control group it belongs to (empty: none), its
+  // electrical power in W (0: not given), and the share of its flux it gives on
+  // emergency supply (EN 1838; 0: not an emergency luminaire, 1: its full flux).
+  std::string group;
+  double watts = 0;
+  double emergency = 0;
+
   // Sky and sun.
   std::shared_ptr<const Daylight> daylight;
   double daylight_flux = 0;  // lm reaching the model's surfaces, set by the solver

@@ -20,6 +20,11 @@
 //   any:
 //   "maintenance_factor"  in (0, 1], multiplies the flux (default 1)
 //   "colour" / "color"    [r, g, b]: a tint, scaled to luminance 1 (default white)
+//   "group"               control group name (light scenes dim groups)
+//   "watts"               electrical power, for the luminaire schedule
+//   "emergency"           also an emergency luminaire (EN 1838): true (its full flux
+//                         on emergency supply), a factor in (0, 1] (the emergency
+//                         ballast lumen factor) or {"lumens": flux on emergency supply}
 //   "positions"           [[x, y, z], ...] instead of "position": one luminaire at each,
 //                         named "<name>.1", "<name>.2", ...
 //   "array"               {"count": [n1, n2], "step": [[dx, dy, dz], [ex, ey, ez]]}:
@@ -72,7 +77,8 @@ class LuminaireParser {
     if (!e.is_object()) fail(where + " must be an object.");
     static const std::set<std::string> known = {"type",   "name",   "position", "aim",       "spin",
                                                 "photometry", "lumens", "intensity", "cone", "maintenance_factor",
-                                                "colour", "color",  "positions", "array"};
+                                                "colour", "color",  "positions", "array", "group", "watts",
+                                                "emergency"};
     for (const auto& item : e.items())
       if (!known.count(item.key())) {
         std::string list;
@@ -159,6 +165,34 @@ class LuminaireParser {
         if (!(l.intensity > 0)) fail(named + ".intensity must be above 0 (candela).");
       }
       l.intensity *= l.maintenance_factor;
+    }
+    if (e.contains("group")) {
+      if (!e["group"].is_string() || e["group"].get<std::string>().empty())
+        fail(named + ".group must be a non-empty string (the control group's name).");
+      l.group = e["group"].get<std::string>();
+    }
+    if (e.contains("watts")) {
+      l.watts = number(e["watts"], named + ".watts");
+      if (!(l.watts > 0)) fail(named + ".watts must be above 0.");
+    }
+    if (e.contains("emergency")) {
+      const json& m = e["emergency"];
+      const std::string usage = named + ".emergency must be true, a factor in (0, 1] of the flux, or {\"lumens\": F}.";
+      if (m.is_boolean()) {
+        l.emergency = m.get<bool>() ? 1.0 : 0.0;
+      } else if (m.is_number()) {
+        l.emergency = number(m, named + ".emergency");
+        if (!(l.emergency > 0 && l.emergency <= 1)) fail(usage);
+      } else if (m.is_object() && m.size() == 1 && m.contains("lumens")) {
+        const double supply = number(m["lumens"], named + ".emergency.lumens");
+        const double flux = l.flux();
+        if (!(supply > 0)) fail(named + ".emergency.lumens must be above 0.");
+        if (!(supply <= flux * (1 + 1e-9)))
+          fail(named + ".emergency.lumens is above the luminaire's flux (" + std::to_string(flux) + " lm).");
+        l.emergency = supply / flux;
+      } else {
+        fail(usage);
+      }
     }
     // Where: one position, a list, or an array from the position.
     const int ways = e.contains("position") + e.contains("positions");

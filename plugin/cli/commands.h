@@ -51,7 +51,9 @@ struct LoadOptions {
     options.strict = strict;
     options.up = up == "y" ? 1 : up == "z" ? 2 : -1;
     options.scale = scale;
-    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky"};  // rad::read_luminaires, _grids, _cameras, _daylight
+    // rad::read_luminaires, _grids, _cameras, _daylight, _observers, _emergency_areas;
+    // the report's title block (plugin/cli/design_output.h)
+    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project"};
     return options;
   }
 };

@@ -31,7 +31,8 @@ nlohmann::json target_json(const rad::GridSpec& g) {
 }  // namespace
 
 nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
-                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene) {
+                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene,
+                                  std::vector<rad::GridResult>* gathered) {
   nlohmann::json results = nlohmann::json::array();
   const char* unit = scene.photometric ? "lx" : "W/m2";
   for (const rad::GridSpec& g : grids) {
@@ -90,6 +91,7 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
                    "internally reflected {:.2f}%), minimum {:.2f}%, maximum {:.2f}%, outside {:.4g} lx",
                    g.name, r.df_avg, r.sky_component, r.externally_reflected, r.internally_reflected, r.df_min,
                    r.df_max, r.outside);
+    if (gathered) gathered->push_back(r);
   }
   AtomicFile file(prefix + "_grids.json", std::ios::out);
   file.stream() << nlohmann::json({{"input", input}, {"grids", results}}).dump(2) << "\n";

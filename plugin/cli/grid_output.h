@@ -16,8 +16,10 @@ namespace dynrad::cli {
 void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSpec>& grids);
 
 // Gathers every grid, writes its files and PREFIX_grids.json; returns the per-grid
-// figures (also logged). `input` names the model in the JSON.
+// figures (also logged). `input` names the model in the JSON. `gathered`, when given,
+// receives each grid's result (for the room checks).
 nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
-                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene);
+                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene,
+                                  std::vector<rad::GridResult>* gathered = nullptr);
 
 }  // namespace dynrad::cli
