@@ -3,16 +3,18 @@
 # Safe to run repeatedly; needs root (or sudo).
 #
 #   scripts/install-deps.sh build   # building and running dynrad: compiler, CMake, Ninja,
-#                                   # pkg-config, the -dev libraries, the DejaVu font
-#                                   # (the grids' pictures) and three.js (libjs-three,
-#                                   # inlined in `dynrad view`'s pages) (scripts/demo.sh)
+#                                   # pkg-config, the -dev libraries (cairo draws the PDF
+#                                   # report), the DejaVu font (the grids' pictures) and
+#                                   # three.js (libjs-three, inlined in `dynrad view`'s
+#                                   # pages) (scripts/demo.sh)
 #   scripts/install-deps.sh [all]   # also what the tests and CI need: GoogleTest, Google
 #                                   # Benchmark, MeshLab and Xvfb (viewer test), Blender
 #                                   # (add-on test), Chromium (the walk-through page's
 #                                   # test), clang, libclang-rt-dev (libFuzzer and
 #                                   # sanitizer runtimes) and llvm (llvm-symbolizer, for
 #                                   # readable sanitizer stacks) for scripts/fuzz.sh and
-#                                   # scripts/test-sanitizers.sh
+#                                   # scripts/test-sanitizers.sh, poppler-utils (pdfinfo,
+#                                   # pdftotext: the PDF report's test)
 #
 # DRY_RUN=1 prints the packages that would be installed and installs nothing.
 set -euo pipefail
@@ -24,7 +26,7 @@ build_packages=(
   libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtinyobjloader-dev libpng-dev libtinygltf-dev
   libassimp-dev libjs-three
-  libfreetype-dev fonts-dejavu-core
+  libfreetype-dev fonts-dejavu-core libcairo2-dev
 )
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -32,6 +34,7 @@ test_packages=(
   blender python3-numpy assimp-testmodels
   chromium
   clang libclang-rt-dev llvm
+  poppler-utils
 )
 case $mode in
   build) packages=("${build_packages[@]}") ;;

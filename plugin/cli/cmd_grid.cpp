@@ -2,13 +2,15 @@
 // solving again. The grids are the scene file's ("grids"), or one given by --grid. The
 // direct light comes from the model (its luminaires, its emitting faces), the rest from
 // the lit PLY's radiosity (radiosity/grid.h). With --views or --html, also the views
-// (the scene's cameras, plans and rooms) and the one-file report.
+// (the scene's cameras, plans and rooms) and the one-file report; with --pdf, the
+// printable report (plugin/cli/pdf_report.h).
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
 #include "plugin/cli/html_report.h"
+#include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
 #include "radiosity/daylight.h"
@@ -31,7 +33,7 @@ struct GridOptions {
   double height = 0.8, spacing = 0, border = 0;
   std::string up = "z", name = "grid";
   bool views = false;
-  std::string html;
+  std::string html, pdf;
   double exposure = 0;  // 0: automatic, as solve's
   LoadOptions model_load;
 };
@@ -62,7 +64,7 @@ int run_grid(const GridOptions& options) {
     grids.push_back(g);
   } else {
     grids = rad::read_grids(options.model);
-    if (grids.empty() && !options.views && options.html.empty())
+    if (grids.empty() && !options.views && options.html.empty() && options.pdf.empty())
       throw InputError(options.model, 0,
                        "declares no \"grids\"; give one with --grid x0,y0,x1,y1 (and --height, --spacing).");
   }
@@ -72,8 +74,9 @@ int run_grid(const GridOptions& options) {
           : options.output;
   check_grid_outputs(prefix, grids);
   const std::vector<rad::View> cameras = rad::read_cameras(options.model);
-  const bool automatic_views = options.views || !options.html.empty();
+  const bool automatic_views = options.views || !options.html.empty() || !options.pdf.empty();
   check_view_outputs(prefix, cameras, automatic_views, options.html);
+  if (!options.pdf.empty()) check_output_writable(options.pdf);
 
   const LitMesh lit = read_lit(options.lit);
   LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
@@ -119,6 +122,10 @@ int run_grid(const GridOptions& options) {
     write_html_report(options.html, report);
     spdlog::info("wrote {}", options.html);
   }
+  if (!options.pdf.empty()) {
+    write_pdf_report(options.pdf, report);
+    spdlog::info("wrote {}", options.pdf);
+  }
   return kExitOk;
 }
 
@@ -128,7 +135,7 @@ Command add_grid_command(CLI::App& app) {
   auto options = std::make_shared<GridOptions>();
   CLI::App* command = app.add_subcommand(
       "grid", "Illuminance on calculation grids (work planes) of a lit mesh: figures, CSV and false-colour plans; "
-      "with --views or --html, views and the report");
+      "with --views, --html or --pdf, views and the report");
   command->add_option("lit", options->lit, "Lit PLY written by dynrad solve")->required();
   command->add_option("--model", options->model,
                       "The model or scene file the PLY was lit from: its luminaires, emitting faces and grids")
@@ -147,6 +154,8 @@ Command add_grid_command(CLI::App& app) {
                     "Also render the views: the scene's cameras, a plan of each storey and a view of each room "
                     "(PREFIX_view_NAME.png and PREFIX_view_NAME_luminance.png)");
   command->add_option("--html", options->html, "Write a one-file HTML report of the grids and views here (implies --views)");
+  command->add_option("--pdf", options->pdf,
+                      "Write a printable PDF report (A4) of the grids and views here (implies --views)");
   command->add_option("--exposure", options->exposure, "Exposure of the true-colour views (default: automatic)")
       ->check(CLI::PositiveNumber);
   add_cleanup_options(*command, options->model_load);

@@ -12,7 +12,9 @@
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
+#include "plugin/cli/design_output.h"
 #include "plugin/cli/html_report.h"
+#include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/png.h"
 #include "radiosity/daylight.h"
@@ -51,6 +53,7 @@ struct SolveCliOptions {
   std::string preview;
   int preview_width = 800;
   std::string html;    // the one-file HTML report
+  std::string pdf;     // the paginated PDF report
   bool views = false;  // also the automatic views (plans, rooms)
   std::string method = "dynamic";
   std::string quality = "normal";
@@ -191,8 +194,11 @@ int run_solve(SolveCliOptions& options) {
   // Views: the scene file's cameras always; the automatic ones (whose names come from
   // the model) with --views or --html, checked here by the directory they go to.
   const std::vector<rad::View> cameras = rad::read_cameras(options.load.input);
-  const bool automatic_views = options.views || !options.html.empty();
+  const bool automatic_views = options.views || !options.html.empty() || !options.pdf.empty();
   check_view_outputs(grid_prefix, cameras, automatic_views, options.html);
+  if (!options.pdf.empty()) check_output_writable(options.pdf);
+  // Observers, emergency routes, the project block (plugin/cli/design_output.h).
+  const bool design = check_design_inputs(options.load.input);
 
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
@@ -321,7 +327,7 @@ int run_solve(SolveCliOptions& options) {
   // Grids, views, the preview and the glTF's cameras gather from or render the lit mesh
   // (radiosity/lit_scene.h).
   std::unique_ptr<rad::LitScene> scene_lit;
-  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb)
+  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb || design)
     scene_lit = std::make_unique<rad::LitScene>(
         rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
   std::vector<rad::View> found_views;
@@ -392,7 +398,9 @@ int run_solve(SolveCliOptions& options) {
   }
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).
   nlohmann::json grid_results = nlohmann::json::array();
-  if (!grids.empty()) grid_results = write_grid_results(grid_prefix, options.load.input, grids, *scene_lit);
+  std::vector<rad::GridResult> gathered;
+  if (!grids.empty())
+    grid_results = write_grid_results(grid_prefix, options.load.input, grids, *scene_lit, &gathered);
   const std::vector<rad::View> views = automatic_views ? rad::merge_views(cameras, found_views) : cameras;
   std::vector<ViewPictures> pictures;
   if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);
@@ -420,15 +428,7 @@ int run_solve(SolveCliOptions& options) {
     j["grids"] = grid_results;
     j["views"] = views_json(pictures);
     j["luminaires"] = nlohmann::json::array();
-    for (const rad::Luminaire& l : solver.luminaires())
-      j["luminaires"].push_back({{"name", l.name},
-                                 {"type", l.kind == rad::Luminaire::Kind::sky   ? "sky"
-                                          : l.kind == rad::Luminaire::Kind::sun ? "sun"
-                                                                                : "luminaire"},
-                                 {"flux", l.flux()},
-                                 {"position", {l.position[0], l.position[1], l.position[2]}},
-                                 {"aim", {l.nadir[0], l.nadir[1], l.nadir[2]}},
-                                 {"description", l.describe()}});
+    for (const rad::Luminaire& l : solver.luminaires()) j["luminaires"].push_back(luminaire_json(l));
     j["iterations"] = report.iterations;
     j["energy_transfers"] = report.energy_transfers;
     j["patch_element_transfers"] = report.patch_element_transfers;
@@ -499,6 +499,7 @@ int run_solve(SolveCliOptions& options) {
                     {"time_limit", options.solve.time_limit},
                     {"threads", options.solve.threads},
                     {"seed", options.solve.seed}};
+    if (scene_lit) add_design_checks(j, options.load.input, *scene_lit, gathered);
     if (!options.report.empty()) {
       AtomicFile file(options.report, std::ios::out);
       file.stream() << j.dump(2) << "\n";
@@ -508,6 +509,10 @@ int run_solve(SolveCliOptions& options) {
       write_html_report(options.html, j);
       spdlog::info("wrote {} (the lighting report: the solve, {} grids, {} views)", options.html, grid_results.size(),
                    pictures.size());
+    }
+    if (!options.pdf.empty()) {
+      write_pdf_report(options.pdf, j);
+      spdlog::info("wrote {} (the lighting report, paginated)", options.pdf);
     }
   }
   if (!report.refinement_stopped.empty())
@@ -595,6 +600,9 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--threads", options->solve.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   command->add_option("--seed", options->solve.seed, "Seed of all ray sampling")->capture_default_str();
   command->add_option("--report", options->report, "Write a JSON report of the solve here");
+  command->add_option("--pdf", options->pdf,
+                      "Write the lighting report as a paginated A4 PDF here: title block, luminaire schedule, "
+                      "EN 12464-1 per room, UGR per observer, emergency lighting, grids and views (implies --views)");
   command->add_option("--exposure", options->exposure,
                       "Multiply radiosity by this before the sRGB curve (default: automatic)")
       ->check(CLI::PositiveNumber);
