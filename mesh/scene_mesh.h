@@ -63,6 +63,8 @@ class SceneMesh {
   Vec3d centroid(FaceHandle f) const;
 
   const std::vector<Material>& materials() const { return materials_; }
+  // Replaces material `id`'s properties (its faces keep it); the id must exist.
+  void set_material(std::size_t id, const Material& m) { materials_.at(id) = m; }
   const std::vector<std::string>& group_names() const { return group_names_; }
   const std::vector<std::string>& files() const { return files_; }
 

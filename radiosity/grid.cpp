@@ -169,6 +169,7 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
   indirect = indirect * (1.0 / (static_cast<double>(side) * side));
   out.direct = direct.luminance();
   out.indirect = indirect.luminance();
+  out.colour = direct + indirect;
   out.illuminance = out.direct + out.indirect;
   return out;
 }

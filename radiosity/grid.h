@@ -104,6 +104,7 @@ struct GridPointResult {
   bool masked = false;      // inside a solid
   double illuminance = 0;   // direct + indirect, luminance-weighted (lx or W/m^2)
   double direct = 0, indirect = 0;
+  Rgb colour;               // direct + indirect per channel (illuminance is its luminance)
   // Of `direct`, what the sky gives from above the horizon (sky component) and from
   // below it (the ground outside: externally reflected), lx.
   double sky = 0, ground = 0;

@@ -3,6 +3,7 @@
 #include "mesh/error.h"
 #include "radiosity/design/check.h"
 #include "radiosity/design/emergency.h"
+#include "radiosity/design/light_scenes.h"
 #include "radiosity/design/room_checks.h"
 #include "radiosity/grid.h"
 #include "radiosity/grid_scene.h"
@@ -307,6 +308,72 @@ TEST(DesignChecks, SceneFileErrorsNameTheFileAndTheEntry) {
   EXPECT_DOUBLE_EQ(g[0].room.ez, 150);
   EXPECT_DOUBLE_EQ(g[0].room.ez_height, 1.6);
   EXPECT_DOUBLE_EQ(g[0].room.ugr, 19);
+}
+
+// Channels: each group's light in one, scaled so that its luminance is the light's; a
+// scene's value at a point is the groups' luminances times their levels.
+TEST(DesignChecks, LightScenesKeepEachGroupInAChannelOfItsOwn) {
+  std::vector<rad::Luminaire> luminaires(4);
+  const char* groups[] = {"day", "night", "day", ""};
+  for (int k = 0; k < 4; ++k) {
+    luminaires[k].name = "L" + std::to_string(k + 1);
+    luminaires[k].group = groups[k];
+  }
+  const rad::ChannelPlan plan = rad::plan_channels("s.json", luminaires, false);
+  EXPECT_EQ(plan.channels, (std::vector<std::string>{"day", "night", ""}));
+  rad::assign_channels(luminaires, plan);
+  for (int k = 0; k < 3; ++k) {
+    const Rgb c = rad::channel_colour(k);
+    EXPECT_NEAR(c.luminance(), 1.0, 1e-15);
+    EXPECT_EQ((c.r > 0) + (c.g > 0) + (c.b > 0), 1);
+  }
+  EXPECT_EQ(luminaires[2].colour.r, rad::channel_colour(0).r);
+  // A point lit 30 lx by the day group, 10 by the night group and 5 by the rest:
+  const Rgb point = rad::channel_colour(0) * 30.0 + rad::channel_colour(1) * 10.0 + rad::channel_colour(2) * 5.0;
+  const std::array<double, 3> y = rad::channel_luminances(point);
+  EXPECT_NEAR(y[0], 30, 1e-12);
+  EXPECT_NEAR(y[1], 10, 1e-12);
+  EXPECT_NEAR(y[2], 5, 1e-12);
+  EXPECT_NEAR(rad::grey(point).g, 45, 1e-12);
+  const rad::LightScene evening{"evening", {{"day", 0.5}}};
+  const std::array<double, 3> levels = rad::channel_levels(evening, plan);
+  EXPECT_EQ(levels, (std::array<double, 3>{0.5, 1, 1}));
+  rad::GridResult grid;
+  grid.spec.target_eavg = 40;
+  rad::GridPointResult p;
+  p.colour = point;
+  grid.points = {p, p};
+  const rad::SceneGrid g = rad::scene_grid(grid, levels);
+  EXPECT_NEAR(g.e_avg, 0.5 * 30 + 10 + 5, 1e-12);
+  EXPECT_FALSE(g.meets_target);
+  // A fourth channel, or a tinted luminaire, cannot be kept apart.
+  luminaires.push_back(luminaires[0]);
+  luminaires.back().group = "cleaning";
+  EXPECT_THROW(rad::plan_channels("s.json", luminaires, false), InputError);
+  luminaires.pop_back();
+  EXPECT_THROW(rad::plan_channels("s.json", luminaires, false), InputError);  // (coloured now: assigned above)
+}
+
+TEST(DesignChecks, LightSceneErrorsNameTheSceneAndTheGroup) {
+  test::TempDir dir;
+  std::vector<rad::Luminaire> luminaires(1);
+  luminaires[0].group = "day";
+  auto error_of = [&](const std::string& text) {
+    try {
+      rad::read_light_scenes(dir.write("scene.json", text), luminaires);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string unknown = error_of(R"({"scenes": [{"name": "eve", "levels": {"night": 1}}]})");
+  EXPECT_NE(unknown.find("scenes[0] (\"eve\").levels names group \"night\""), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("groups: day"), std::string::npos) << unknown;
+  const std::string level = error_of(R"({"scenes": [{"levels": {"day": 1.5}}]})");
+  EXPECT_NE(level.find("from 0 (off) to 1 (full)"), std::string::npos) << level;
+  const std::string twice = error_of(R"({"scenes": [{"name": "a", "levels": {}}, {"name": "a", "levels": {}}]})");
+  EXPECT_NE(twice.find("two scenes are named \"a\""), std::string::npos) << twice;
+  EXPECT_EQ(error_of(R"({"scenes": [{"name": "a", "levels": {"day": 0.2}}]})"), "no error");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
+#include "plugin/cli/design_output.h"
 #include "plugin/cli/html_report.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
@@ -39,6 +40,8 @@ struct GridOptions {
 };
 
 int run_grid(const GridOptions& options) {
+  // Observers, emergency routes, the project block (plugin/cli/design_output.h).
+  const bool design = check_design_inputs(options.model);
   std::vector<rad::GridSpec> grids;
   if (!options.grid.empty()) {
     std::vector<double> v;
@@ -64,7 +67,7 @@ int run_grid(const GridOptions& options) {
     grids.push_back(g);
   } else {
     grids = rad::read_grids(options.model);
-    if (grids.empty() && !options.views && options.html.empty() && options.pdf.empty())
+    if (grids.empty() && !design && !options.views && options.html.empty() && options.pdf.empty())
       throw InputError(options.model, 0,
                        "declares no \"grids\"; give one with --grid x0,y0,x1,y1 (and --height, --spacing).");
   }
@@ -104,7 +107,11 @@ int run_grid(const GridOptions& options) {
                            {"output", options.lit},
                            {"units", lit.photometric ? "photometric" : "radiometric"},
                            {"grids", nlohmann::json::array()}};
-  if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene);
+  std::vector<rad::GridResult> gathered;
+  if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene, &gathered);
+  report["luminaires"] = nlohmann::json::array();
+  for (const rad::Luminaire& l : scene.luminaires) report["luminaires"].push_back(luminaire_json(l));
+  add_design_checks(report, options.model, scene, gathered);
   std::vector<char> include(scene.radiosity.size(), 1);
   for (std::size_t f = 0; f < scene.triangles.size(); ++f)
     if (!scene.emission[f].is_zero())

@@ -1,8 +1,10 @@
-// `dynrad info FILE`: what dynrad sees in a model after cleanup.
+// `dynrad info FILE`: what dynrad sees in a model after cleanup; for a photometry file
+// (.ies, .ldt), its summary and the tabular UGR (radiosity/design/glare.h).
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 #include "radiosity/daylight.h"
+#include "radiosity/design/glare.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/settings.h"
 #include "radiosity/visibility.h"
@@ -13,6 +15,10 @@
 #include <map>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -27,7 +33,102 @@ struct InfoOptions {
 
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 
+bool is_photometry_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".ies" || ext == ".ldt";
+}
+
+// UGR values as reports show them: one decimal, "<10" below CIE 117's scale.
+std::string ugr_text(double ugr) { return ugr < 10 ? "<10" : fmt::format("{:.1f}", ugr); }
+double rounded(double x, double step) { return std::round(x / step) * step; }
+
+// `dynrad info LUMINAIRE.ies|.ldt`: the photometry and its standard UGR table.
+int run_photometry_info(const InfoOptions& options) {
+  const rad::Photometry p = rad::read_photometry(options.load.input);
+  const rad::UgrTable table = rad::tabular_ugr(p);
+  const double peak = p.candela.empty() ? 0.0 : *std::max_element(p.candela.begin(), p.candela.end());
+  const double width = p.round ? std::abs(p.length) : std::abs(p.width);
+  const std::string opening =
+      std::max(std::abs(p.length), width) == 0
+          ? "none (a point source)"
+          : p.round ? fmt::format("round, diameter {:.3g} m, luminous height {:.3g} m", std::abs(p.length),
+                                  std::abs(p.height))
+                    : fmt::format("{:.3g} m (C0) x {:.3g} m (C90), luminous height {:.3g} m", std::abs(p.length),
+                                  width, std::abs(p.height));
+  if (options.json) {
+    nlohmann::json j;
+    j["input"] = options.load.input;
+    j["format"] = p.format;
+    j["name"] = p.name;
+    j["flux"] = p.flux;
+    j["lamp_flux"] = p.lamp_flux;
+    j["stated_flux"] = p.stated_flux;
+    j["symmetry"] = p.symmetry;
+    j["opening"] = {{"length", std::abs(p.length)}, {"width", width}, {"height", std::abs(p.height)}, {"round", p.round}};
+    j["peak_intensity"] = peak;
+    j["warnings"] = p.warnings;
+    nlohmann::json u;
+    u["defined"] = table.defined;
+    u["flux"] = table.flux;
+    u["height"] = table.height;
+    u["spacing"] = table.spacing;
+    u["reflectances"] = nlohmann::json::array();
+    for (const rad::UgrReflectances& r : table.reflectances)
+      u["reflectances"].push_back({{"ceiling", r.ceiling}, {"walls", r.walls}, {"floor", r.floor}});
+    u["rows"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < table.crosswise.size(); ++k) {
+      nlohmann::json row = {{"x", table.rooms[k].x}, {"y", table.rooms[k].y}};
+      for (double v : table.crosswise[k]) row["crosswise"].push_back(rounded(v, 0.1));
+      for (double v : table.endwise[k]) row["endwise"].push_back(rounded(v, 0.1));
+      u["rows"].push_back(row);
+    }
+    u["notes"] = table.notes;
+    j["ugr_table"] = u;
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::cout << fmt::format("photometry      {} ({})\n", options.load.input, p.format);
+  if (!p.name.empty()) std::cout << fmt::format("name            {}\n", p.name);
+  std::cout << fmt::format("flux            {:.5g} lm from the distribution", p.flux);
+  if (p.lamp_flux > 0) std::cout << fmt::format(", lamps {:.5g} lm", p.lamp_flux);
+  std::cout << "\n";
+  std::cout << fmt::format("symmetry        {}\n", p.symmetry);
+  std::cout << fmt::format("opening         {}\n", opening);
+  std::cout << fmt::format("peak intensity  {:.5g} cd\n", peak);
+  if (!table.defined) {
+    std::cout << "UGR table       none\n";
+  } else {
+    std::cout << fmt::format("UGR table       CIE 190 layout: H = {:.3g} m, spacing {:.3g} H, {:.5g} lm per luminaire\n",
+                             table.height, table.spacing, table.flux);
+    auto reflectance_line = [&](const char* label, auto member) {
+      std::cout << fmt::format("  {:<12}", label);
+      for (int side = 0; side < 2; ++side) {
+        if (side == 1) std::cout << "   ";
+        for (const rad::UgrReflectances& r : table.reflectances) std::cout << fmt::format("{:>6.2f}", r.*member);
+      }
+      std::cout << "\n";
+    };
+    std::cout << fmt::format("  {:<12}{:<33}{}\n", "", "crosswise", "endwise");
+    reflectance_line("ceiling", &rad::UgrReflectances::ceiling);
+    reflectance_line("walls", &rad::UgrReflectances::walls);
+    reflectance_line("floor", &rad::UgrReflectances::floor);
+    std::cout << "  room X x Y\n";
+    for (std::size_t k = 0; k < table.rooms.size(); ++k) {
+      std::cout << fmt::format("  {:>4}H {:>4}H ", table.rooms[k].x, table.rooms[k].y);
+      for (double v : table.crosswise[k]) std::cout << fmt::format("{:>6}", ugr_text(v));
+      std::cout << "   ";
+      for (double v : table.endwise[k]) std::cout << fmt::format("{:>6}", ugr_text(v));
+      std::cout << "\n";
+    }
+  }
+  for (const std::string& note : table.notes) std::cout << "note            " << note << "\n";
+  for (const auto& w : p.warnings) spdlog::warn("{}", w);
+  return kExitOk;
+}
+
 int run_info(const InfoOptions& options) {
+  if (is_photometry_file(options.load.input)) return run_photometry_info(options);
   const CleanupOptions cleanup = options.load.cleanup();
   SimplifyOptions simplify;
   simplify.enabled = options.load.simplify;

@@ -13,6 +13,7 @@
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_output.h"
 #include "plugin/cli/design_output.h"
+#include "radiosity/design/light_scenes.h"
 #include "plugin/cli/html_report.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
@@ -242,6 +243,32 @@ int run_solve(SolveCliOptions& options) {
     options.solve.min_reflectance = 1e-4;
   }
   for (const rad::Luminaire& l : luminaires) spdlog::info("luminaire {}", l.describe());
+  // Light scenes: each control group's light in a channel of its own (radiosity/design/
+  // light_scenes.h); materials grey for the solve, restored after it.
+  const std::vector<rad::LightScene> light_scenes = rad::read_light_scenes(options.load.input, luminaires);
+  rad::ChannelPlan channels;
+  const std::vector<Material> materials = mesh.materials();
+  if (!light_scenes.empty()) {
+    channels = rad::plan_channels(options.load.input, luminaires, mesh.emitting_area() > 0);
+    rad::assign_channels(luminaires, channels);
+    const int own = channels.channel("");
+    std::size_t coloured = 0;
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+      Material grey = materials[m];
+      coloured += grey.reflectance.max_channel() - grey.reflectance.min_channel() > 1e-9;
+      grey.reflectance = rad::grey(grey.reflectance);
+      grey.emission = own >= 0 ? rad::channel_colour(own) * grey.emission.luminance() : Rgb();
+      mesh.set_material(m, grey);
+    }
+    if (coloured > 0)
+      spdlog::warn("light scenes: {} coloured materials are taken as grey of the same luminance reflectance (each "
+                   "group's light travels in a colour channel of its own); the lit mesh is grey.",
+                   coloured);
+    std::string groups;
+    for (const std::string& g : channels.channels) groups += (groups.empty() ? "" : ", ") + (g.empty() ? "(no group)" : g);
+    spdlog::info("light scenes: {} scenes of {} channels ({}), from one solve", light_scenes.size(),
+                 channels.channels.size(), groups);
+  }
   if (!luminaires.empty()) {
     const rad::Visibility visibility(mesh);
     for (const std::string& w : rad::luminaire_warnings(visibility, luminaires)) spdlog::warn("{}", w);
@@ -297,13 +324,27 @@ int run_solve(SolveCliOptions& options) {
   std::signal(SIGTERM, on_stop_signal);
   rad::Solver solver(mesh, hierarchy, options.solve, refine, luminaires);
   running = &solver;
-  const rad::SolveReport report = solver.run();
+  rad::SolveReport report = solver.run();
   progress.finish();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
 
   // Output: per-vertex radiosity, display colours through an exposure.
-  const rad::Solver::Output result = solver.output();
+  rad::Solver::Output result = solver.output();
+  // Light scenes: every grid per scene from the channelled solve, then everything grey
+  // again (the scene with every group at full output).
+  nlohmann::json scenes_report = nlohmann::json::array();
+  if (!light_scenes.empty()) {
+    scenes_report = light_scene_results(light_scenes, channels, grids,
+                                        rad::lit_scene(mesh, result.split, result.radiosity, luminaires,
+                                                       options.solve.emission_scale, photometric));
+    for (Rgb& b : result.radiosity) b = rad::grey(b);
+    for (Rgb& e : result.irradiance) e = rad::grey(e);
+    for (Rgb* e : {&report.energy.emitted, &report.energy.absorbed, &report.energy.escaped, &report.energy.unshot})
+      *e = rad::grey(*e);
+    for (rad::Luminaire& l : luminaires) l.colour = Rgb(1, 1, 1);
+    for (std::size_t m = 0; m < materials.size(); ++m) mesh.set_material(m, materials[m]);
+  }
   std::vector<char> lit(result.emitter.size());
   for (std::size_t x = 0; x < lit.size(); ++x) lit[x] = !result.emitter[x];
   const double exposure = options.exposure > 0 ? options.exposure : rad::auto_exposure(result.radiosity, lit, split_vertex_areas(mesh, result.split));
@@ -500,6 +541,7 @@ int run_solve(SolveCliOptions& options) {
                     {"threads", options.solve.threads},
                     {"seed", options.solve.seed}};
     if (scene_lit) add_design_checks(j, options.load.input, *scene_lit, gathered);
+    if (!scenes_report.empty()) j["scenes"] = scenes_report;
     if (!options.report.empty()) {
       AtomicFile file(options.report, std::ios::out);
       file.stream() << j.dump(2) << "\n";

@@ -51,9 +51,10 @@ struct LoadOptions {
     options.strict = strict;
     options.up = up == "y" ? 1 : up == "z" ? 2 : -1;
     options.scale = scale;
-    // rad::read_luminaires, _grids, _cameras, _daylight, _observers, _emergency_areas;
+    // rad::read_luminaires, _grids, _cameras, _daylight, _observers, _emergency_areas,
+    // _light_scenes;
     // the report's title block (plugin/cli/design_output.h)
-    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project"};
+    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project", "scenes"};
     return options;
   }
 };

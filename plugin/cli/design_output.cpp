@@ -78,6 +78,36 @@ json read_project(const std::string& scene_path) {
 
 }  // namespace
 
+json light_scene_results(const std::vector<rad::LightScene>& scenes, const rad::ChannelPlan& plan,
+                         const std::vector<rad::GridSpec>& grids, const rad::LitScene& channelled) {
+  std::vector<rad::GridResult> gathered;
+  for (const rad::GridSpec& g : grids) gathered.push_back(rad::gather_grid(channelled, g));
+  json out = json::array();
+  for (const rad::LightScene& scene : scenes) {
+    const std::array<double, 3> levels = rad::channel_levels(scene, plan);
+    json entry = {{"name", scene.name}, {"levels", json::object()}, {"grids", json::array()}};
+    for (std::size_t k = 0; k < plan.channels.size(); ++k)
+      if (!plan.channels[k].empty()) entry["levels"][plan.channels[k]] = levels[k];
+    std::string figures;
+    for (const rad::GridResult& g : gathered) {
+      const rad::SceneGrid r = rad::scene_grid(g, levels);
+      json grid = {{"name", r.name}, {"count", r.count}, {"Eavg", r.e_avg}, {"Emin", r.e_min},
+                   {"Emax", r.e_max}, {"U0", r.u0},      {"meets_target", r.meets_target}};
+      if (g.spec.target_eavg > 0 || g.spec.target_u0 > 0) {
+        grid["target"] = json::object();
+        if (g.spec.target_eavg > 0) grid["target"]["Eavg"] = g.spec.target_eavg;
+        if (g.spec.target_u0 > 0) grid["target"]["U0"] = g.spec.target_u0;
+      }
+      entry["grids"].push_back(grid);
+      figures += fmt::format("{}{} Eavg {:.4g} U0 {:.3f}{}", figures.empty() ? "" : "; ", r.name, r.e_avg, r.u0,
+                             grid.contains("target") ? (r.meets_target ? " (met)" : " (NOT met)") : "");
+    }
+    spdlog::info("light scene {}: {}", scene.name, figures.empty() ? "no grid" : figures);
+    out.push_back(entry);
+  }
+  return out;
+}
+
 json luminaire_json(const rad::Luminaire& l) {
   json j = {{"name", l.name},
             {"type", l.kind == rad::Luminaire::Kind::sky   ? "sky"

@@ -1,5 +1,7 @@
 #include "plugin/cli/html_report.h"
 
+#include "plugin/cli/html_design.h"
+
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io_util.h"
@@ -94,7 +96,15 @@ void write_html_report(const std::string& path, const json& r) {
     << "th{background:#eee}\nimg{max-width:100%;border:1px solid #ccc;margin:0.3em 0.3em 0 0}\n"
     << "figure{display:inline-block;margin:0 1em 1.5em 0;vertical-align:top}\n"
     << ".pair img{max-width:48%}\n.note{color:#555;font-size:0.9em}\n</style>\n</head>\n<body>\n";
-  h << "<h1>Lighting report: " << text(r["input"]) << "</h1>\n";
+  const json project = r.contains("project") && r["project"].is_object() ? r["project"] : json::object();
+  h << "<h1>Lighting report: " << (project.contains("name") ? text(project["name"]) : text(r["input"])) << "</h1>\n";
+  std::string byline;
+  for (const char* key : {"client", "author", "date"})
+    if (project.contains(key))
+      byline += (byline.empty() ? "" : " · ") + std::string(1, static_cast<char>(std::toupper(key[0]))) + (key + 1) +
+                ": " + text(project[key]);
+  if (!byline.empty()) h << "<p>" << byline << "</p>\n";
+  if (project.contains("description")) h << "<p>" << text(project["description"]) << "</p>\n";
   h << "<p class=\"note\">Written by dynrad " << text(r["dynrad_version"]) << ". Lit mesh: " << text(r["output"])
     << ". Units: " << (photometric ? "photometric (lm, lx, cd/m²)" : "radiometric (W, W/m², W/(m² sr))")
     << ".</p>\n";
@@ -195,6 +205,8 @@ void write_html_report(const std::string& path, const json& r) {
       h << "<figure>" << picture(g["picture"], "grid " + g.value("name", "")) << "<figcaption>" << text(g["name"])
         << ", CSV per point: " << text(g["csv"]) << "</figcaption></figure>\n";
   }
+
+  h << html_design_sections(r);
 
   // Views.
   if (r.contains("views") && !r["views"].empty()) {

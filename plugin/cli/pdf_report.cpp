@@ -231,7 +231,7 @@ void luminaire_schedule(PdfDocument& doc, const json& r) {
   for (const json& l : *luminaires) {
     LuminaireType t;
     const json* photometry = field(l, "photometry");
-    t.file = photometry ? text(*photometry, "file") : "";
+    t.file = photometry ? std::filesystem::path(text(*photometry, "file")).filename().string() : "";
     t.photometry_name = photometry ? text(*photometry, "name") : "";
     t.kind = text(l, "type");
     t.flux = number(l, "flux").value_or(0);

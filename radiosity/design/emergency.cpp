@@ -63,7 +63,7 @@ EmergencyResult check_emergency(const LitScene& scene, const EmergencyArea& area
   for (const Luminaire& l : scene.luminaires)
     if (l.emergency > 0 && !l.directional()) r.luminaires.push_back(l.name);
   const Vec3d up = axis_vector(area.up);
-  const std::string clause = "EN 1838:2013 4.2";
+  const std::string clause = "EN 1838:2013, escape routes";
   std::vector<Vec3d> points;
   if (area.kind == EmergencyArea::Kind::route) {
     // The centre line first (every 0.1 m, both ends included), then the band's lines.
@@ -122,11 +122,11 @@ EmergencyResult check_emergency(const LitScene& scene, const EmergencyArea& area
   r.points = points.size();
   const bool any = !points.empty();
   Check minimum{"open area less 0.5 m", "Emin", r.e_min, any, "lx", Check::Relation::at_least, area.band_min, 0,
-                "EN 1838:2013 4.3"};
+                "EN 1838:2013, open areas"};
   if (!any) minimum.note = "the 0.5 m border leaves no floor";
   r.checks.push_back(minimum);
   Check ratio{"open area less 0.5 m", "Emax/Emin", r.e_min > 0 ? r.e_max / r.e_min : INFINITY, r.e_min > 0, "",
-              Check::Relation::at_most, area.max_ratio, 0, "EN 1838:2013 4.3"};
+              Check::Relation::at_most, area.max_ratio, 0, "EN 1838:2013, open areas"};
   if (any && !(r.e_min > 0)) ratio.note = "a point gets no emergency light";
   r.checks.push_back(ratio);
   return r;

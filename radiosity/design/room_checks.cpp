@@ -108,10 +108,10 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
 
   if (spec.target_eavg > 0)
     room.checks.push_back({"task area", "Em", task.e_avg, task.count > 0, "lx", Check::Relation::at_least,
-                           spec.target_eavg, 0, "EN 12464-1:2021 5.3.3"});
+                           spec.target_eavg, 0, "EN 12464-1:2021, maintained illuminance"});
   if (spec.target_u0 > 0)
     room.checks.push_back({"task area", "U0", task.u0, task.count > 0, "", Check::Relation::at_least, spec.target_u0,
-                           0, "EN 12464-1:2021 5.3.4"});
+                           0, "EN 12464-1:2021, uniformity"});
 
   // The immediate surrounding: a band between border - width and border from the edges.
   if (targets.surrounding > 0) {
@@ -130,9 +130,9 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
     const double eavg = targets.surrounding_eavg > 0 ? targets.surrounding_eavg : surrounding_illuminance(spec.target_eavg);
     if (eavg > 0)
       room.checks.push_back({"surrounding", "Em", room.surrounding.e_avg, room.surrounding.count > 0, "lx",
-                             Check::Relation::at_least, eavg, 0, "EN 12464-1:2021 5.3.3, table 1"});
+                             Check::Relation::at_least, eavg, 0, "EN 12464-1:2021, the surrounding's Em from the task's"});
     room.checks.push_back({"surrounding", "U0", room.surrounding.u0, room.surrounding.count > 0, "",
-                           Check::Relation::at_least, targets.surrounding_u0, 0, "EN 12464-1:2021 5.3.4"});
+                           Check::Relation::at_least, targets.surrounding_u0, 0, "EN 12464-1:2021, uniformity"});
   }
 
   const double height = room.ceiling - room.floor;
@@ -169,7 +169,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
           }
       }
       room.walls = figures(gather(scene, samples, options, 0x3A115ull << 20));
-      add_checks(room.checks, "walls", room.walls, targets.walls_eavg, targets.walls_u0, "EN 12464-1:2021 5.2.3");
+      add_checks(room.checks, "walls", room.walls, targets.walls_eavg, targets.walls_u0, "EN 12464-1:2021, walls and ceiling");
     }
     if (targets.ceiling) {
       GridSpec top = spec;
@@ -180,7 +180,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
       for (const Vec3d& p : grid_points(top)) samples.push_back({p, -up});
       room.ceiling_surface = figures(gather(scene, samples, options, 0xCE11ull << 20));
       add_checks(room.checks, "ceiling", room.ceiling_surface, targets.ceiling_eavg, targets.ceiling_u0,
-                 "EN 12464-1:2021 5.2.3");
+                 "EN 12464-1:2021, walls and ceiling");
     }
   }
 
@@ -211,12 +211,12 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
     room.modelling = n > 0 ? sum / n : 0;
     const std::string at = fmt::format("task area at {:g} m", targets.ez_height);
     room.checks.push_back({at, "Ez", room.cylindrical.e_avg, room.cylindrical.count > 0, "lx",
-                           Check::Relation::at_least, targets.ez, 0, "EN 12464-1:2021 5.2.5"});
+                           Check::Relation::at_least, targets.ez, 0, "EN 12464-1:2021, cylindrical illuminance"});
     room.checks.push_back({at, "U0 (Ez)", room.cylindrical.u0, room.cylindrical.count > 0, "",
-                           Check::Relation::at_least, targets.ez_u0, 0, "EN 12464-1:2021 5.2.5"});
+                           Check::Relation::at_least, targets.ez_u0, 0, "EN 12464-1:2021, cylindrical illuminance"});
     Check modelling{at, "Ez/Eh", room.modelling, n > 0, "", Check::Relation::within, targets.modelling_low,
                     targets.modelling_high,
-                    fmt::format("EN 12464-1:2021 5.2.6; the mean of {} points, from {:.2f} to {:.2f}", n,
+                    fmt::format("EN 12464-1:2021, modelling; the mean of {} points, from {:.2f} to {:.2f}", n,
                                 room.modelling_min, room.modelling_max)};
     room.checks.push_back(modelling);
   }
@@ -238,7 +238,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
       worst = std::max(worst, o.ugr);
     }
     Check ugr{"observers", "UGR", any && worst > -1e300 ? worst : 0, any && worst > -1e300, "", Check::Relation::at_most,
-              targets.ugr, 0, "EN 12464-1:2021 5.5.3; the largest of the observers in the room"};
+              targets.ugr, 0, "EN 12464-1:2021, UGR limit; the largest of the observers in the room"};
     if (!any) {
       ugr.note = "no observer stands in the room: add one to the scene's \"observers\"";
     } else if (!ugr.defined) {

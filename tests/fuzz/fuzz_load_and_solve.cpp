@@ -16,6 +16,9 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "radiosity/daylight.h"
+#include "radiosity/design/emergency.h"
+#include "radiosity/design/glare.h"
+#include "radiosity/design/light_scenes.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/views.h"
 #include "radiosity/luminaire.h"
@@ -118,14 +121,18 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
   ReadOptions read;
-  read.other_scene_keys = {"luminaires", "grids", "cameras", "sky"};  // as the command line reads scenes
+  // as the command line reads scenes (plugin/cli/commands.h)
+  read.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project", "scenes"};
   (void)rad::read_grids(path);
   (void)rad::read_cameras(path);
+  (void)rad::read_observers(path);
+  (void)rad::read_emergency_areas(path);
   LoadedScene scene = load_scene(path, {}, {}, read);
   SceneMesh& mesh = *scene.mesh;
   // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;
   // here a scene may name downlight.ies, written beside it).
   std::vector<rad::Luminaire> luminaires = rad::read_luminaires(path);
+  (void)rad::read_light_scenes(path, luminaires);
   // The sky section is read and checked (its shots cost too many rays for a fuzz run).
   (void)rad::read_daylight(path, scene.glazing, scene.openings);
   if (luminaires.size() > 16) luminaires.resize(16);  // arrays: a few shots cover the paths
