@@ -462,7 +462,8 @@ void scenes(PdfDocument& doc, const json& r) {
       t.right_aligned = {false, true, true, true, false};
       for (const json& g : *grids)
         t.rows.push_back({text(g, "name", kNone), significant(number(g, "Eavg")), significant(number(g, "Emin")),
-                          fixed(number(g, "U0"), 2), verdict(flag(g, "meets_target"))});
+                          fixed(number(g, "U0"), 2),
+                          verdict(g.contains("target") ? flag(g, "meets_target") : std::nullopt)});
       doc.table(t);
     }
   }
