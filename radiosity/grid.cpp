@@ -33,6 +33,13 @@ void frame(const Vec3d& n, Vec3d& t, Vec3d& b) {
   b = OpenMesh::cross(n, t);
 }
 
+// The solved radiosity where a ray met a face, interpolated from its corners.
+Rgb radiosity_at(const LitScene& scene, const Visibility::Intersection& hit) {
+  const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
+  return scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
+         scene.radiosity[tri[2]] * hit.v;
+}
+
 }  // namespace
 
 double polygon_edge_distance(const std::vector<std::array<double, 2>>& polygon, double x, double y) {
@@ -161,10 +168,7 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
       // (from a hair above the point: a grid on a surface must not see that surface)
       const Visibility::Intersection hit = vis.intersect(point + normal * (1e-7 * scene.diagonal), dir);
       if (!hit.hit || !hit.front) continue;
-      const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
-      const Rgb b = scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
-                    scene.radiosity[tri[2]] * hit.v;
-      indirect += b - scene.emission[static_cast<std::size_t>(hit.face)];
+      indirect += radiosity_at(scene, hit) - scene.emission[static_cast<std::size_t>(hit.face)];
     }
   indirect = indirect * (1.0 / (static_cast<double>(side) * side));
   out.direct = direct.luminance();
@@ -218,9 +222,7 @@ GridPointResult gather_cylindrical(const LitScene& scene, const Vec3d& point, co
       const Vec3d dir = t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + up * z;
       const Visibility::Intersection hit = vis.intersect(point, dir);
       if (!hit.hit || !hit.front) continue;
-      const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
-      const Rgb radiosity = scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
-                            scene.radiosity[tri[2]] * hit.v;
+      const Rgb radiosity = radiosity_at(scene, hit);
       const Rgb& emission = scene.emission[static_cast<std::size_t>(hit.face)];
       emitted += 4 / M_PI * s * emission.luminance();
       indirect += 4 / M_PI * s * (radiosity - emission).luminance();
@@ -230,6 +232,29 @@ GridPointResult gather_cylindrical(const LitScene& scene, const Vec3d& point, co
   out.indirect = indirect / n;
   out.illuminance = out.direct + out.indirect;
   return out;
+}
+
+PointStatistics point_statistics(const std::vector<GridPointResult>& points) {
+  PointStatistics s;
+  double sum = 0;
+  s.e_min = std::numeric_limits<double>::infinity();
+  for (const GridPointResult& p : points) {
+    if (p.masked) {
+      ++s.masked;
+      continue;
+    }
+    ++s.count;
+    sum += p.illuminance;
+    s.e_min = std::min(s.e_min, p.illuminance);
+    s.e_max = std::max(s.e_max, p.illuminance);
+  }
+  if (s.count == 0) {
+    s.e_min = 0;
+    return s;
+  }
+  s.e_avg = sum / static_cast<double>(s.count);
+  s.u0 = s.e_avg > 0 ? s.e_min / s.e_avg : 0.0;
+  return s;
 }
 
 GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options) {
@@ -245,25 +270,14 @@ GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const Gather
     result.points[k].cell = cells[k];
   });
   result.indirect_rays = options.side * options.side;
-  double sum = 0;
-  result.e_min = std::numeric_limits<double>::infinity();
-  result.e_max = 0;
-  for (const GridPointResult& p : result.points) {
-    if (p.masked) {
-      ++result.masked;
-      continue;
-    }
-    ++result.count;
-    sum += p.illuminance;
-    result.e_min = std::min(result.e_min, p.illuminance);
-    result.e_max = std::max(result.e_max, p.illuminance);
-  }
-  if (result.count == 0) {
-    result.e_min = 0;
-    return result;
-  }
-  result.e_avg = sum / static_cast<double>(result.count);
-  result.u0 = result.e_avg > 0 ? result.e_min / result.e_avg : 0.0;
+  const PointStatistics stats = point_statistics(result.points);
+  result.count = stats.count;
+  result.masked = stats.masked;
+  result.e_avg = stats.e_avg;
+  result.e_min = stats.e_min;
+  result.e_max = stats.e_max;
+  result.u0 = stats.u0;
+  if (result.count == 0) return result;
   result.min_over_max = result.e_max > 0 ? result.e_min / result.e_max : 0.0;
   // Daylight factors, against the sky's unobstructed horizontal illuminance.
   // (Only under a sky alone: with the sun or luminaires the ratio is not a daylight factor.)

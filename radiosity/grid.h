@@ -110,6 +110,14 @@ struct GridPointResult {
   double sky = 0, ground = 0;
 };
 
+// Figures over a set of gathered points, the masked ones left out and counted: average,
+// minimum, maximum and U0 = Emin / Eavg (all 0 with no point).
+struct PointStatistics {
+  std::size_t count = 0, masked = 0;
+  double e_avg = 0, e_min = 0, e_max = 0, u0 = 0;
+};
+PointStatistics point_statistics(const std::vector<GridPointResult>& points);
+
 struct GridResult {
   GridSpec spec;
   double spacing = 0;

@@ -97,21 +97,13 @@ PdfCell verdict(std::optional<bool> met) {
   return cell;
 }
 
-std::string today() {
+// The local time now in strftime's `format`.
+std::string local_time(const char* format) {
   const std::time_t now = std::time(nullptr);
   std::tm local{};
   localtime_r(&now, &local);
   char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", &local);
-  return buffer;
-}
-
-std::string now_iso() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%S", &local);
+  std::strftime(buffer, sizeof buffer, format, &local);
   return buffer;
 }
 
@@ -181,7 +173,7 @@ void title_block(PdfDocument& doc, const json& r, const std::string& name) {
   std::string facts;
   for (const auto& [label, key] : {std::pair{"Client", "client"}, {"Author", "author"}})
     if (!text(project, key).empty()) facts += std::string(label) + ": " + text(project, key) + "\n";
-  facts += "Date: " + text(project, "date", today());
+  facts += "Date: " + text(project, "date", local_time("%Y-%m-%d"));
   doc.paragraph(facts, 10);
   if (!text(project, "description").empty()) doc.paragraph(text(project, "description"), 10);
   const std::string units = text(r, "units");
@@ -562,7 +554,7 @@ void write_pdf_report(const std::string& path, const json& r) {
     metadata.author = text(project, "author");
     metadata.subject = input.empty() ? "" : "Lighting of " + input;
     metadata.creator = "dynrad " + text(r, "dynrad_version");
-    metadata.created = now_iso();
+    metadata.created = local_time("%Y-%m-%dT%H:%M:%S");
     bytes = doc.finish(metadata);
   } catch (const std::runtime_error& e) {
     throw OutputError(path, e.what());

@@ -20,29 +20,6 @@ struct Sample {
   Vec3d position, normal;
 };
 
-SurfaceFigures figures(const std::vector<GridPointResult>& results) {
-  SurfaceFigures f;
-  double sum = 0;
-  f.e_min = std::numeric_limits<double>::infinity();
-  for (const GridPointResult& r : results) {
-    if (r.masked) {
-      ++f.masked;
-      continue;
-    }
-    ++f.count;
-    sum += r.illuminance;
-    f.e_min = std::min(f.e_min, r.illuminance);
-    f.e_max = std::max(f.e_max, r.illuminance);
-  }
-  if (f.count == 0) {
-    f.e_min = 0;
-    return f;
-  }
-  f.e_avg = sum / static_cast<double>(f.count);
-  f.u0 = f.e_avg > 0 ? f.e_min / f.e_avg : 0;
-  return f;
-}
-
 std::vector<GridPointResult> gather(const LitScene& scene, const std::vector<Sample>& samples,
                                     const GatherOptions& options, std::uint64_t salt) {
   std::vector<GridPointResult> out(samples.size());
@@ -62,7 +39,7 @@ Vec3d plan_point(int up, double x, double y, double height) {
 }
 
 // Em and U0 of a surface as two checks.
-void add_checks(std::vector<Check>& checks, const std::string& area, const SurfaceFigures& f, double eavg,
+void add_checks(std::vector<Check>& checks, const std::string& area, const PointStatistics& f, double eavg,
                 double u0, const std::string& clause) {
   Check em{area, "Em", f.e_avg, f.count > 0, "lx", Check::Relation::at_least, eavg, 0, clause};
   Check uniformity{area, "U0", f.u0, f.count > 0, "", Check::Relation::at_least, u0, 0, clause};
@@ -126,7 +103,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
       const double d = polygon_edge_distance(polygon, p[a], p[b]);
       if (d >= inner - 1e-12 && d < spec.border - 1e-12) samples.push_back({p, up});
     }
-    room.surrounding = figures(gather(scene, samples, options, 0x5A11ull << 20));
+    room.surrounding = point_statistics(gather(scene, samples, options, 0x5A11ull << 20));
     const double eavg = targets.surrounding_eavg > 0 ? targets.surrounding_eavg : surrounding_illuminance(spec.target_eavg);
     if (eavg > 0)
       room.checks.push_back({"surrounding", "Em", room.surrounding.e_avg, room.surrounding.count > 0, "lx",
@@ -168,7 +145,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
                                normal});
           }
       }
-      room.walls = figures(gather(scene, samples, options, 0x3A115ull << 20));
+      room.walls = point_statistics(gather(scene, samples, options, 0x3A115ull << 20));
       add_checks(room.checks, "walls", room.walls, targets.walls_eavg, targets.walls_u0, "EN 12464-1:2021, walls and ceiling");
     }
     if (targets.ceiling) {
@@ -178,7 +155,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
       top.spacing = 0;
       std::vector<Sample> samples;
       for (const Vec3d& p : grid_points(top)) samples.push_back({p, -up});
-      room.ceiling_surface = figures(gather(scene, samples, options, 0xCE11ull << 20));
+      room.ceiling_surface = point_statistics(gather(scene, samples, options, 0xCE11ull << 20));
       add_checks(room.checks, "ceiling", room.ceiling_surface, targets.ceiling_eavg, targets.ceiling_u0,
                  "EN 12464-1:2021, walls and ceiling");
     }
@@ -195,7 +172,7 @@ RoomResult check_room(const LitScene& scene, const GridResult& task, const std::
       eh[k] = gather_point(scene, points[k], up, options, seed);
       ez[k] = eh[k].masked ? eh[k] : gather_cylindrical(scene, points[k], up, options, mix(seed));
     });
-    room.cylindrical = figures(ez);
+    room.cylindrical = point_statistics(ez);
     double sum = 0;
     std::size_t n = 0;
     room.modelling_min = std::numeric_limits<double>::infinity();

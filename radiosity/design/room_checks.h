@@ -17,7 +17,7 @@
 //
 // The floor and the ceiling are found by rays straight down and up from the polygon's
 // middle at the grid's height. Wall, ceiling and band points are spaced by the automatic
-// rule (grid.h) on the surface's longer side, and at most a quarter of the band's width
+// rule (grid.h) on the surface's longer side, and at most half the band's width
 // apart across it (two rows at least). Points inside solids (furniture against a wall)
 // are left out and counted, as for grids.
 #pragma once
@@ -38,15 +38,10 @@ struct ObserverGlare {
   bool defined = false;
 };
 
-struct SurfaceFigures {
-  std::size_t count = 0, masked = 0;
-  double e_avg = 0, e_min = 0, e_max = 0, u0 = 0;
-};
-
 struct RoomResult {
   std::string name;              // the grid's
   double floor = 0, ceiling = 0;  // along up; ceiling 0 when none was found
-  SurfaceFigures surrounding, walls, ceiling_surface, cylindrical;
+  PointStatistics surrounding, walls, ceiling_surface, cylindrical;
   double modelling = 0, modelling_min = 0, modelling_max = 0;  // Ez / Eh over the task area
   std::vector<std::string> observers;  // those in the room
   std::vector<Check> checks;
