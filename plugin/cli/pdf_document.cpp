@@ -11,6 +11,9 @@
 namespace dynrad::cli {
 namespace {
 
+// Tables of at most this many rows are kept on one page.
+constexpr std::size_t kKeptRows = 12;
+
 // A4 portrait in points, and the frame the text keeps inside.
 constexpr double kPageWidth = 595.276, kPageHeight = 841.89;
 constexpr double kMargin = 50;
@@ -288,7 +291,11 @@ void PdfDocument::table(const PdfTable& table) {
   const Laid header = lay(header_row);
   std::vector<Laid> rows;
   for (const auto& row : table.rows) rows.push_back(lay(row));
-  need(header.height + (rows.empty() ? 0 : rows.front().height));
+  // A short table that fits on a page is not split: it starts on the next one.
+  double whole = header.height;
+  for (const Laid& row : rows) whole += row.height;
+  need(rows.size() <= kKeptRows && whole <= text_height() ? whole
+                                                          : header.height + (rows.empty() ? 0 : rows.front().height));
   place(header_row, header);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     if (y_ + rows[r].height > kBottom) {

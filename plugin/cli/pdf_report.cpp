@@ -506,6 +506,8 @@ void solve_facts(PdfDocument& doc, const json& r) {
                     kNote);
     return;
   }
+  // The heading and its short table together on one page.
+  doc.keep(180);
   doc.heading("Solve");
   PdfTable t;
   t.header = {"", ""};
