@@ -147,7 +147,7 @@ void write_html_report(const std::string& path, const json& r) {
   if (r.contains("luminaires") && !r["luminaires"].empty()) {
     h << "<h2>Light sources</h2>\n<p class=\"note\">For the sky and the sun, the flux is what reaches the "
          "model's surfaces.</p>\n<table>\n<tr><th>Name</th><th>Flux (lm)</th><th>Position</th><th>Aim</th>"
-         "<th>Description</th></tr>\n";
+         "<th>Group</th><th>W</th><th>Emergency (lm)</th><th>Description</th></tr>\n";
     for (const json& l : r["luminaires"]) {
       auto vec = [](const json& v) {
         return v.is_array() && v.size() == 3
@@ -157,6 +157,8 @@ void write_html_report(const std::string& path, const json& r) {
       const bool daylight = l.value("type", "") == "sky" || l.value("type", "") == "sun";
       h << "<tr><td>" << text(l["name"]) << "</td><td class=\"n\">" << number(l["flux"], "{:.0f}") << "</td><td>"
         << (daylight ? "–" : vec(l["position"])) << "</td><td>" << (daylight ? "–" : vec(l["aim"])) << "</td><td>"
+        << text(l.value("group", json())) << "</td><td class=\"n\">" << number(l.value("watts", json()), "{:g}")
+        << "</td><td class=\"n\">" << number(l.value("emergency_flux", json()), "{:.0f}") << "</td><td>"
         << text(l["description"]) << "</td></tr>\n";
     }
     h << "</table>\n";
