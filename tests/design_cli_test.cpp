@@ -138,5 +138,16 @@ TEST(DesignCli, LightSceneEqualsASolveOfTheSameDimming) {
   }
 }
 
+// An output the PDF cannot be written to stops the solve before any work, naming it, and
+// writes nothing else.
+TEST(DesignCli, UnwritablePdfStopsTheSolveBeforeAnyWork) {
+  test::TempDir dir;
+  const test::CommandResult run = test::run_dynrad("solve -q '" + test::sample("storey_luminaires.json") + "' -o '" +
+                                                   dir.path("s.ply") + "' --pdf '" + dir.path("missing/s.pdf") + "'");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("missing/s.pdf"), std::string::npos) << run.output;
+  EXPECT_FALSE(test::file_exists(dir.path("s.ply")));
+}
+
 }  // namespace
 }  // namespace dynrad

@@ -11,6 +11,7 @@
 #include "plugin/cli/grid_output.h"
 #include "plugin/cli/design_output.h"
 #include "plugin/cli/html_report.h"
+#include "radiosity/design/light_scenes.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
@@ -112,6 +113,9 @@ int run_grid(const GridOptions& options) {
   report["luminaires"] = nlohmann::json::array();
   for (const rad::Luminaire& l : scene.luminaires) report["luminaires"].push_back(luminaire_json(l));
   add_design_checks(report, options.model, scene, gathered);
+  if (!rad::read_light_scenes(options.model, scene.luminaires).empty())
+    spdlog::info("the scene's light scenes are left out: they come from a solve (dynrad solve), whose groups travel "
+                 "in channels of their own; a lit PLY holds the light of every group together.");
   std::vector<char> include(scene.radiosity.size(), 1);
   for (std::size_t f = 0; f < scene.triangles.size(); ++f)
     if (!scene.emission[f].is_zero())
