@@ -270,13 +270,7 @@ GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const Gather
     result.points[k].cell = cells[k];
   });
   result.indirect_rays = options.side * options.side;
-  const PointStatistics stats = point_statistics(result.points);
-  result.count = stats.count;
-  result.masked = stats.masked;
-  result.e_avg = stats.e_avg;
-  result.e_min = stats.e_min;
-  result.e_max = stats.e_max;
-  result.u0 = stats.u0;
+  static_cast<PointStatistics&>(result) = point_statistics(result.points);
   if (result.count == 0) return result;
   result.min_over_max = result.e_max > 0 ? result.e_min / result.e_max : 0.0;
   // Daylight factors, against the sky's unobstructed horizontal illuminance.

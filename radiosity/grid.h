@@ -118,15 +118,13 @@ struct PointStatistics {
 };
 PointStatistics point_statistics(const std::vector<GridPointResult>& points);
 
-struct GridResult {
+// The point statistics (count, masked, e_avg, e_min, e_max, u0) are over its points.
+struct GridResult : PointStatistics {
   GridSpec spec;
   double spacing = 0;
   GridCells cells;
   std::vector<GridPointResult> points;
-  std::size_t masked = 0;
-  // Over the unmasked points: average, minimum, maximum, U0 = Emin / Eavg, Emin / Emax.
-  double e_avg = 0, e_min = 0, e_max = 0, u0 = 0, min_over_max = 0;
-  std::size_t count = 0;  // unmasked points
+  double min_over_max = 0;  // Emin / Emax over the unmasked points
   int indirect_rays = 0;  // per point
   // With a sky: its unobstructed horizontal illuminance (lx) and the daylight factors
   // over the unmasked points, DF = 100 E / outside (%): average, minimum, maximum, and
