@@ -12,9 +12,12 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -573,6 +576,28 @@ void check_ply_body(const std::string& path, const std::string& text, const PlyH
             const long long n = std::strtoll(token.c_str(), &end, 10);
             if (*end != '\0' || n < 0 || static_cast<unsigned long long>(n) > tokens.size() - next)
               refuse_list(e, p, r, line_no, token);
+            // Each entry a number of the list's type: OpenMesh reads an integer entry into
+            // an int, and one that does not fit fails its stream, after which every later
+            // count it reads is garbage (a 4 GB list: found by fuzzing).
+            for (std::size_t k = next; k < next + static_cast<std::size_t>(n); ++k) {
+              const std::string& item = tokens[k];
+              char* stop = nullptr;
+              bool fits = false;
+              if (p.floating) {
+                std::strtod(item.c_str(), &stop);
+                fits = *stop == '\0';
+              } else {
+                errno = 0;
+                const long long v = std::strtoll(item.c_str(), &stop, 10);
+                fits = *stop == '\0' && errno == 0 && v >= std::numeric_limits<std::int32_t>::min() &&
+                       v <= std::numeric_limits<std::int32_t>::max();
+              }
+              if (!fits)
+                throw InputError(path, line_no,
+                                 e.name + " " + std::to_string(r) + ": entry '" + item + "' of the list '" + p.name +
+                                     "' is not " + (p.floating ? "a number" : "a whole number that fits in 32 bits") +
+                                     ". The file is damaged.");
+            }
             next += static_cast<std::size_t>(n);
             continue;
           }

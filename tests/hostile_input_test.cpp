@@ -717,6 +717,27 @@ TEST(HostileInput, PlyFloatColoursOutsideZeroToOneAreRefused) {
   }
 }
 
+// An ASCII PLY face whose vertex index does not fit in an int is refused naming its line:
+// OpenMesh's stream failed on it and then read every later list count as garbage,
+// allocating 4 GB (found by the ply fuzz target).
+TEST(HostileInput, PlyListEntryTooLargeForAnIntIsRefused) {
+  TempDir dir;
+  const std::string path = dir.write("big.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                                     "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 22222222222222222222 1\n");
+  const auto r = test::run_dynrad("info '" + path + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("big.ply:14"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fits in 32 bits"), std::string::npos) << r.output;
+  const auto letters = test::run_dynrad(
+      "info '" + dir.write("word.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                       "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 one 2\n") + "'");
+  EXPECT_EQ(letters.exit_code, 2) << letters.output;
+  EXPECT_NE(letters.output.find("entry 'one'"), std::string::npos) << letters.output;
+}
+
 // The same check on binary PLY, where OpenMesh's conversion is the same.
 TEST(HostileInput, BinaryPlyFloatColoursAreCheckedToo) {
   TempDir dir;
