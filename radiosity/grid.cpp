@@ -71,7 +71,6 @@ double automatic_spacing(double longer_side) {
 
 std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::vector<std::array<long, 2>>* cells,
                                GridCells* layout) {
-  const auto [a, b] = plan_axes(spec.up);
   double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double hi[2] = {-lo[0], -lo[1]};
   for (const auto& p : spec.polygon)
@@ -94,11 +93,7 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::
       const double y = lo[1] + spec.border + (j + 0.5) * d / ny;
       if (!inside_polygon(spec.polygon, x, y)) continue;
       if (spec.border > 0 && edge_distance(spec.polygon, x, y) < spec.border - 1e-12) continue;
-      Vec3d v(0.0);
-      v[a] = x;
-      v[b] = y;
-      v[spec.up] = spec.height;
-      out.push_back(v);
+      out.push_back(plan_point(spec.up, x, y, spec.height));
       if (cells) cells->push_back({i, j});
     }
   return out;
@@ -299,6 +294,13 @@ GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const Gather
     result.internally_reflected /= n;
   }
   return result;
+}
+
+std::vector<GridResult> gather_grids(const LitScene& scene, const std::vector<GridSpec>& specs,
+                                     const GatherOptions& options) {
+  std::vector<GridResult> out;
+  for (const GridSpec& spec : specs) out.push_back(gather_grid(scene, spec, options));
+  return out;
 }
 
 }  // namespace dynrad::rad

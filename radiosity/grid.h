@@ -150,6 +150,9 @@ GridPointResult gather_cylindrical(const LitScene& scene, const Vec3d& point, co
                                    const GatherOptions& options, std::uint64_t point_seed);
 
 GridResult gather_grid(const LitScene& scene, const GridSpec& spec, const GatherOptions& options = {});
+// Each of `specs`, in order.
+std::vector<GridResult> gather_grids(const LitScene& scene, const std::vector<GridSpec>& specs,
+                                     const GatherOptions& options = {});
 
 // The illuminance at one point facing `normal` (for tests and probes): direct and
 // indirect as above. `masked` is set when the point is inside a solid.

@@ -28,6 +28,15 @@ Vec3d axis_vector(int axis, double sign) {
   return v;
 }
 
+Vec3d plan_point(int up, double x, double y, double height) {
+  const auto [a, b] = plan_axes(up);
+  Vec3d v(0.0);
+  v[a] = x;
+  v[b] = y;
+  v[up] = height;
+  return v;
+}
+
 int up_axis(const LitScene& scene) {
   Vec3d facing(0.0);
   for (std::size_t f = 0; f < scene.triangles.size(); ++f) {

@@ -33,6 +33,9 @@ Vec3d axis_vector(int axis, double sign = 1);
 // The two axes of the plan for `up`, the first to the picture's right.
 std::array<int, 2> plan_axes(int up);
 
+// The point at (x, y) in the plan's axes and `height` along `up`.
+Vec3d plan_point(int up, double x, double y, double height);
+
 struct Storey {
   double floor = 0;    // along up
   double height = 0;   // floor to ceiling

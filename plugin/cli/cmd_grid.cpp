@@ -8,14 +8,14 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/grid_output.h"
 #include "plugin/cli/design_output.h"
+#include "plugin/cli/grid_output.h"
 #include "plugin/cli/html_report.h"
-#include "radiosity/design/light_scenes.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
 #include "radiosity/daylight.h"
+#include "radiosity/design/light_scenes.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/solve_types.h"
@@ -41,8 +41,10 @@ struct GridOptions {
 };
 
 int run_grid(const GridOptions& options) {
-  // Observers, emergency routes, the project block (plugin/cli/design_output.h).
+  // Observers, emergency routes, the project block (plugin/cli/design_output.h); light
+  // scenes are checked here too, before any work, though only a solve computes them.
   const bool design = check_design_inputs(options.model);
+  const bool light_scenes = !rad::read_light_scenes(options.model, rad::read_luminaires(options.model)).empty();
   std::vector<rad::GridSpec> grids;
   if (!options.grid.empty()) {
     std::vector<double> v;
@@ -108,12 +110,12 @@ int run_grid(const GridOptions& options) {
                            {"output", options.lit},
                            {"units", lit.photometric ? "photometric" : "radiometric"},
                            {"grids", nlohmann::json::array()}};
-  std::vector<rad::GridResult> gathered;
-  if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, grids, scene, &gathered);
+  const std::vector<rad::GridResult> gathered = rad::gather_grids(scene, grids);
+  if (!grids.empty()) report["grids"] = write_grid_results(prefix, options.model, gathered, scene.photometric);
   report["luminaires"] = nlohmann::json::array();
   for (const rad::Luminaire& l : scene.luminaires) report["luminaires"].push_back(luminaire_json(l));
   add_design_checks(report, options.model, scene, gathered);
-  if (!rad::read_light_scenes(options.model, scene.luminaires).empty())
+  if (light_scenes)
     spdlog::info("the scene's light scenes are left out: they come from a solve (dynrad solve), whose groups travel "
                  "in channels of their own; a lit PLY holds the light of every group together.");
   std::vector<char> include(scene.radiosity.size(), 1);

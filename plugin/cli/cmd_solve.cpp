@@ -11,14 +11,14 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/grid_output.h"
 #include "plugin/cli/design_output.h"
-#include "radiosity/design/light_scenes.h"
+#include "plugin/cli/grid_output.h"
 #include "plugin/cli/html_report.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/png.h"
 #include "radiosity/daylight.h"
+#include "radiosity/design/light_scenes.h"
 #include "radiosity/grid_scene.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/render.h"
@@ -331,18 +331,30 @@ int run_solve(SolveCliOptions& options) {
 
   // Output: per-vertex radiosity, display colours through an exposure.
   rad::Solver::Output result = solver.output();
-  // Light scenes: every grid per scene from the channelled solve, then everything grey
-  // again (the scene with every group at full output).
+  const bool glb = std::filesystem::path(options.output).extension() == ".glb";
+  // Grids, views, the preview, the glTF's cameras and the designer's checks gather from
+  // or render the lit mesh (radiosity/lit_scene.h).
+  std::unique_ptr<rad::LitScene> scene_lit;
+  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb || design ||
+      !light_scenes.empty())
+    scene_lit = std::make_unique<rad::LitScene>(
+        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
+  // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h). With
+  // light scenes, from the channelled solve: each scene from the channels, and the grids
+  // themselves from their luminance, the scene with every group at full output.
+  const std::vector<rad::GridResult> gathered =
+      scene_lit ? rad::gather_grids(*scene_lit, grids) : std::vector<rad::GridResult>();
   nlohmann::json scenes_report = nlohmann::json::array();
   if (!light_scenes.empty()) {
-    scenes_report = light_scene_results(light_scenes, channels, grids,
-                                        rad::lit_scene(mesh, result.split, result.radiosity, luminaires,
-                                                       options.solve.emission_scale, photometric));
+    scenes_report = light_scene_results(light_scenes, channels, gathered);
+    // Everything else grey again: a white-light solve's values.
     for (Rgb& b : result.radiosity) b = rad::grey(b);
     for (Rgb& e : result.irradiance) e = rad::grey(e);
     for (Rgb* e : {&report.energy.emitted, &report.energy.absorbed, &report.energy.escaped, &report.energy.unshot})
       *e = rad::grey(*e);
-    for (rad::Luminaire& l : luminaires) l.colour = Rgb(1, 1, 1);
+    scene_lit->radiosity = result.radiosity;
+    for (Rgb& e : scene_lit->emission) e = rad::grey(e);
+    for (rad::Luminaire& l : scene_lit->luminaires) l.colour = Rgb(1, 1, 1);
     for (std::size_t m = 0; m < materials.size(); ++m) mesh.set_material(m, materials[m]);
   }
   std::vector<char> lit(result.emitter.size());
@@ -361,16 +373,9 @@ int run_solve(SolveCliOptions& options) {
     values.scalars.emplace_back("illuminance", std::move(illuminance));
     values.scalars.emplace_back("luminance", std::move(luminance));
   }
-  const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   // The estimated relative error at each vertex (Solver::Output::error), in the PLY (the
   // glTF's attributes are for viewers: colour and light).
   if (!glb) values.scalars.emplace_back("error", result.error);
-  // Grids, views, the preview and the glTF's cameras gather from or render the lit mesh
-  // (radiosity/lit_scene.h).
-  std::unique_ptr<rad::LitScene> scene_lit;
-  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb || design)
-    scene_lit = std::make_unique<rad::LitScene>(
-        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
   std::vector<rad::View> found_views;
   if (automatic_views || !options.preview.empty() || glb) {
     rad::ViewOptions view_options;
@@ -437,11 +442,8 @@ int run_solve(SolveCliOptions& options) {
     spdlog::info("wrote {} ({}: camera at ({:.4g}, {:.4g}, {:.4g}))", options.preview, chosen_view->description, eye[0],
                  eye[1], eye[2]);
   }
-  // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h).
   nlohmann::json grid_results = nlohmann::json::array();
-  std::vector<rad::GridResult> gathered;
-  if (!grids.empty())
-    grid_results = write_grid_results(grid_prefix, options.load.input, grids, *scene_lit, &gathered);
+  if (!grids.empty()) grid_results = write_grid_results(grid_prefix, options.load.input, gathered, photometric);
   const std::vector<rad::View> views = automatic_views ? rad::merge_views(cameras, found_views) : cameras;
   std::vector<ViewPictures> pictures;
   if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);

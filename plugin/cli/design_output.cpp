@@ -2,6 +2,7 @@
 #include "plugin/cli/design_output.h"
 
 #include "mesh/error.h"
+#include "plugin/cli/grid_output.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/glare.h"
 #include "radiosity/design/room_checks.h"
@@ -79,9 +80,7 @@ json read_project(const std::string& scene_path) {
 }  // namespace
 
 json light_scene_results(const std::vector<rad::LightScene>& scenes, const rad::ChannelPlan& plan,
-                         const std::vector<rad::GridSpec>& grids, const rad::LitScene& channelled) {
-  std::vector<rad::GridResult> gathered;
-  for (const rad::GridSpec& g : grids) gathered.push_back(rad::gather_grid(channelled, g));
+                         const std::vector<rad::GridResult>& channelled) {
   json out = json::array();
   for (const rad::LightScene& scene : scenes) {
     const std::array<double, 3> levels = rad::channel_levels(scene, plan);
@@ -89,15 +88,11 @@ json light_scene_results(const std::vector<rad::LightScene>& scenes, const rad::
     for (std::size_t k = 0; k < plan.channels.size(); ++k)
       if (!plan.channels[k].empty()) entry["levels"][plan.channels[k]] = levels[k];
     std::string figures;
-    for (const rad::GridResult& g : gathered) {
+    for (const rad::GridResult& g : channelled) {
       const rad::SceneGrid r = rad::scene_grid(g, levels);
       json grid = {{"name", r.name}, {"count", r.count}, {"Eavg", r.e_avg}, {"Emin", r.e_min},
                    {"Emax", r.e_max}, {"U0", r.u0},      {"meets_target", r.meets_target}};
-      if (g.spec.target_eavg > 0 || g.spec.target_u0 > 0) {
-        grid["target"] = json::object();
-        if (g.spec.target_eavg > 0) grid["target"]["Eavg"] = g.spec.target_eavg;
-        if (g.spec.target_u0 > 0) grid["target"]["U0"] = g.spec.target_u0;
-      }
+      if (const json target = grid_target_json(g.spec); !target.empty()) grid["target"] = target;
       entry["grids"].push_back(grid);
       figures += fmt::format("{}{} Eavg {:.4g} U0 {:.3f}{}", figures.empty() ? "" : "; ", r.name, r.e_avg, r.u0,
                              grid.contains("target") ? (r.meets_target ? " (met)" : " (NOT met)") : "");

@@ -26,11 +26,11 @@ bool check_design_inputs(const std::string& scene_path);
 void add_design_checks(nlohmann::json& report, const std::string& scene_path, const rad::LitScene& scene,
                        const std::vector<rad::GridResult>& grids);
 
-// The report's "scenes": every grid in every light scene, gathered from `channelled`, the
-// lit scene of a solve whose groups travel in channels of their own (radiosity/design/
+// The report's "scenes": every grid in every light scene, from `channelled`, the grids
+// gathered from a solve whose groups travel in channels of their own (radiosity/design/
 // light_scenes.h); each verdict logged.
 nlohmann::json light_scene_results(const std::vector<rad::LightScene>& scenes, const rad::ChannelPlan& plan,
-                                   const std::vector<rad::GridSpec>& grids, const rad::LitScene& channelled);
+                                   const std::vector<rad::GridResult>& channelled);
 
 // A luminaire's entry in the report: name, kind, flux, place, aim, description, and the
 // schedule's facts (file, group, watts, maintenance factor, emergency share).

@@ -19,24 +19,19 @@ void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSp
   }
 }
 
-namespace {
-
-nlohmann::json target_json(const rad::GridSpec& g) {
+nlohmann::json grid_target_json(const rad::GridSpec& g) {
   nlohmann::json t = nlohmann::json::object();
   if (g.target_eavg > 0) t["Eavg"] = g.target_eavg;
   if (g.target_u0 > 0) t["U0"] = g.target_u0;
   return t;
 }
 
-}  // namespace
-
 nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
-                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene,
-                                  std::vector<rad::GridResult>* gathered) {
+                                  const std::vector<rad::GridResult>& grids, bool photometric) {
   nlohmann::json results = nlohmann::json::array();
-  const char* unit = scene.photometric ? "lx" : "W/m2";
-  for (const rad::GridSpec& g : grids) {
-    const rad::GridResult r = rad::gather_grid(scene, g);
+  const char* unit = photometric ? "lx" : "W/m2";
+  for (const rad::GridResult& r : grids) {
+    const rad::GridSpec& g = r.spec;
     const std::string csv = prefix + "_grid_" + g.name + ".csv";
     AtomicFile file(csv, std::ios::out);
     const bool df = r.outside > 0;
@@ -78,7 +73,7 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
                        {"U0", r.u0},
                        {"Emin/Emax", r.min_over_max},
                        {"indirect_rays_per_point", r.indirect_rays},
-                       {"target", target_json(g)},
+                       {"target", grid_target_json(g)},
                        {"meets_target", r.meets_target()},
                        {"csv", csv},
                        {"picture", png}});
@@ -91,7 +86,6 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
                    "internally reflected {:.2f}%), minimum {:.2f}%, maximum {:.2f}%, outside {:.4g} lx",
                    g.name, r.df_avg, r.sky_component, r.externally_reflected, r.internally_reflected, r.df_min,
                    r.df_max, r.outside);
-    if (gathered) gathered->push_back(r);
   }
   AtomicFile file(prefix + "_grids.json", std::ios::out);
   file.stream() << nlohmann::json({{"input", input}, {"grids", results}}).dump(2) << "\n";

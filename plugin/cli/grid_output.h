@@ -15,11 +15,12 @@ namespace dynrad::cli {
 // Each file the grids will write can be written (OutputError otherwise), before any work.
 void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSpec>& grids);
 
-// Gathers every grid, writes its files and PREFIX_grids.json; returns the per-grid
-// figures (also logged). `input` names the model in the JSON. `gathered`, when given,
-// receives each grid's result (for the room checks).
+// Writes each gathered grid's files and PREFIX_grids.json; returns the per-grid figures
+// (also logged). `input` names the model in the JSON; `photometric`: lx, else W/m2.
 nlohmann::json write_grid_results(const std::string& prefix, const std::string& input,
-                                  const std::vector<rad::GridSpec>& grids, const rad::LitScene& scene,
-                                  std::vector<rad::GridResult>* gathered = nullptr);
+                                  const std::vector<rad::GridResult>& grids, bool photometric);
+
+// A grid's targets as the reports show them: {"Eavg": E, "U0": u}, either or both, or {}.
+nlohmann::json grid_target_json(const rad::GridSpec& g);
 
 }  // namespace dynrad::cli

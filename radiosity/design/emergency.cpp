@@ -19,12 +19,7 @@ namespace {
 constexpr double kAboveFloor = 0.01;
 
 Vec3d floor_point(const EmergencyArea& area, double x, double y) {
-  const auto [a, b] = plan_axes(area.up);
-  Vec3d v(0.0);
-  v[a] = x;
-  v[b] = y;
-  v[area.up] = area.floor + kAboveFloor;
-  return v;
+  return plan_point(area.up, x, y, area.floor + kAboveFloor);
 }
 
 // Direct illuminance from the emergency luminaires, each at its emergency share.

@@ -29,15 +29,6 @@ std::vector<GridPointResult> gather(const LitScene& scene, const std::vector<Sam
   return out;
 }
 
-Vec3d plan_point(int up, double x, double y, double height) {
-  const auto [a, b] = plan_axes(up);
-  Vec3d v(0.0);
-  v[a] = x;
-  v[b] = y;
-  v[up] = height;
-  return v;
-}
-
 // Em and U0 of a surface as two checks.
 void add_checks(std::vector<Check>& checks, const std::string& area, const PointStatistics& f, double eavg,
                 double u0, const std::string& clause) {
