@@ -195,7 +195,8 @@ bool is_portal(const std::vector<Portal>& portals, long pane) {
 }
 
 void portal_sky(const Visibility& visibility, const Daylight& day, const std::vector<Portal>& panes, const Vec3d& x,
-                const Vec3d& n, int budget, double elsewhere, double& seen, double& below) {
+                const Vec3d& n, int budget, double elsewhere, double& seen, double& below,
+                const SkyDirectionSink* sink) {
   const Glazing& glazing = *day.glazing;
   double total = 0;
   for (const Portal& p : panes) total += p.triangle.area;
@@ -203,10 +204,13 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
     double value = 0, below = 0;
     int code = -1;      // -1: counts nothing (blocked, another pane's, below x's plane); 1: seen
     bool edge = false;  // a neighbouring stratum's code differs
+    Vec3d d;            // (for the sink) the direction, and its transmittance x cosine
+    double geometric = 0;
   };
   struct Part {
     double value = 0, below = 0;  // the integral over the pane
     std::size_t seen = 0, strata = 0;
+    std::vector<std::pair<Vec3d, double>> directions;  // for the sink: (direction, weight)
   };
   // The pane's integral on side x side strata (stratum centres of Arvo's map).
   auto integrate = [&](const Portal& p, int side) {
@@ -221,6 +225,8 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
       out.value = day.sky.luminance(d) * through * cosine;
       out.below = OpenMesh::dot(d, day.sky.up) <= 0 ? out.value : 0.0;
       out.code = 1;
+      out.d = d;
+      out.geometric = through * cosine;
       return out;
     };
     Part part;
@@ -253,6 +259,7 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
       }
     const int m = edges == 0 ? 1
                              : std::clamp(static_cast<int>(std::sqrt(static_cast<double>(side) * side / edges)), 2, 8);
+    const double weight = p.triangle.area / static_cast<double>(part.strata);
     double sum = 0, sum_below = 0;
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) {
@@ -260,6 +267,7 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
         if (!c.edge) {
           sum += c.value;
           sum_below += c.below;
+          if (sink && c.code == 1) part.directions.emplace_back(c.d, c.geometric * weight);
           continue;
         }
         for (int a = 0; a < m; ++a)
@@ -267,9 +275,9 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
             const Sample s = sample((i + (a + 0.5) / m) / side, (j + (e + 0.5) / m) / side);
             sum += s.value / (m * m);
             sum_below += s.below / (m * m);
+            if (sink && s.code == 1) part.directions.emplace_back(s.d, s.geometric * weight / (m * m));
           }
       }
-    const double weight = p.triangle.area / static_cast<double>(part.strata);
     part.value = sum * weight;
     part.below = sum_below * weight;
     return part;
@@ -320,13 +328,15 @@ void portal_sky(const Visibility& visibility, const Daylight& day, const std::ve
   for (const Part& part : parts) {
     seen += part.value;
     below += part.below;
+    if (sink)
+      for (const auto& [d, w] : part.directions) (*sink)(d, w);
   }
 }
 
 }  // namespace
 
 double daylight_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
-                            double* unoccluded, int side, double* ground) {
+                            double* unoccluded, int side, double* ground, const SkyDirectionSink* sink) {
   const Daylight& day = *l.daylight;
   if (ground) *ground = 0;
   if (l.kind == Luminaire::Kind::sun) {
@@ -367,6 +377,8 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     // -1 blocked (or a portal's); else 0 open, or 1 + the first pane it crosses (not its
     // transmittance, which changes with the angle from one stratum to the next)
     long code = -1;
+    Vec3d d;             // (for the sink) the direction and its transmittance
+    double through = 0;
   };
   auto sample = [&](double u, double v) {
     Sample out;
@@ -381,6 +393,8 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
     out.seen = L * through;
     out.below = under ? out.seen : 0.0;
     out.code = pane + 1;
+    out.d = d;
+    out.through = through;
     return out;
   };
   // The unobstructed sum: computed once per normal (the cache above), not again for
@@ -413,9 +427,11 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
           if (i2 < 0 || i2 >= k) continue;
           edge = edge || grid[static_cast<std::size_t>(i2 * k + j2)].code != c.code;
         }
+        const double stratum = M_PI / (static_cast<double>(k) * k);
         if (!edge) {
           seen += c.seen;
           below += c.below;
+          if (sink && c.code >= 0) (*sink)(c.d, c.through * stratum);
           continue;
         }
         double sub_seen = 0, sub_below = 0;
@@ -424,6 +440,7 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
             const Sample s = sample((i + (a + 0.5) / m) / k, (j + (e + 0.5) / m) / k);
             sub_seen += s.seen;
             sub_below += s.below;
+            if (sink && s.code >= 0) (*sink)(s.d, s.through * stratum / (m * m));
           }
         seen += sub_seen / (m * m);
         below += sub_below / (m * m);
@@ -438,7 +455,7 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
   }
   double through_seen = 0, through_below = 0;
   if (!portals.empty())
-    portal_sky(*visibility, day, portals, x, n, k * k, seen * scale, through_seen, through_below);
+    portal_sky(*visibility, day, portals, x, n, k * k, seen * scale, through_seen, through_below, sink);
   if (ground) *ground = below * scale + through_below;
   return seen * scale + through_seen;
 }

@@ -40,6 +40,7 @@
 #include "radiosity/glass.h"
 #include "radiosity/sky.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -103,12 +104,20 @@ struct Daylight {
   mutable std::map<std::tuple<long long, long long, long long, int>, double> unobstructed;
 };
 
+// Receives every direction a sky's illuminance at a point was summed over, with its
+// weight: the illuminance is the sum of weight x the sky's luminance along the
+// direction (weights hold the solid angle, the cosine and the glass's transmittance).
+// Daylight coefficients bin them by sky patch (climate/daylight_coefficients.h).
+using SkyDirectionSink = std::function<void(const Vec3d& direction, double weight)>;
+
 // Illuminance (lx) at x facing n from a sky or sun luminaire; `side` overrides the
 // sky's directions when above 0. With `visibility`, shadow rays; without, the
 // unobstructed value (also written to *unoccluded). `ground`, when given, receives the
 // part that comes from below the horizon (the externally reflected light of the ground).
+// `sink` (a sky with `visibility` only) receives the directions that were not blocked.
 double daylight_illuminance(const Visibility* visibility, const Luminaire& l, const Vec3d& x, const Vec3d& n,
-                            double* unoccluded, int side = 0, double* ground = nullptr);
+                            double* unoccluded, int side = 0, double* ground = nullptr,
+                            const SkyDirectionSink* sink = nullptr);
 
 // The "sky" section of a JSON scene file, as luminaires (the sun first, when it has a
 // direct-normal illuminance, then the sky). Keys:

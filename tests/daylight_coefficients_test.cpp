@@ -1,0 +1,171 @@
+// Daylight coefficients (radiosity/climate/sky_patches.h, daylight_coefficients.h): the
+// patches tile the sky, a sky vector keeps a sky's light, and at points in a room the
+// product of an hour's sky vector with the coefficients is the direct computation of
+// that hour's sky.
+#include "mesh/load.h"
+#include "radiosity/climate/daylight_coefficients.h"
+#include "radiosity/climate/sky_patches.h"
+#include "radiosity/daylight.h"
+#include "radiosity/luminaire.h"
+#include "radiosity/sky.h"
+#include "radiosity/visibility.h"
+#include "test_support.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace dynrad {
+namespace {
+
+TEST(SkyPatches, TregenzaAndReinhartCountsAndTheyTileTheSky) {
+  for (const auto& [n, count] : std::vector<std::pair<int, std::size_t>>{{1, 145}, {2, 577}, {4, 2305}}) {
+    const rad::SkyPatches patches(n, Vec3d(0, 0, 1), Vec3d(0, 1, 0));
+    EXPECT_EQ(patches.size(), count);
+    double solid = 0, projected = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      solid += patches.solid_angle(i);
+      projected += patches.projected_solid_angle(i);
+      EXPECT_EQ(patches.index(patches.centre(i)), i) << "MF:" << n << " patch " << i;
+    }
+    EXPECT_NEAR(solid, 2 * M_PI, 1e-9);
+    EXPECT_NEAR(projected, M_PI, 1e-9);
+  }
+  // Directions map to the patch whose bounds hold them; the first patch is centred on
+  // north and the next is east of it; below the horizon is the ground.
+  const rad::SkyPatches t(1, Vec3d(0, 0, 1), Vec3d(0, 1, 0));
+  EXPECT_EQ(t.index(Vec3d(0, 1, 0.01).normalized()), 0u);
+  EXPECT_EQ(t.index(Vec3d(0.2, 1, 0.01).normalized()), 1u);   // 11 degrees east of north: the next
+  EXPECT_EQ(t.index(Vec3d(-0.2, 1, 0.01).normalized()), 29u);  // and west of it: the row's last
+  EXPECT_EQ(t.index(Vec3d(0, 0, 1)), 144u);
+  EXPECT_EQ(t.index(Vec3d(1, 0, -0.1).normalized()), t.ground());
+  std::uint64_t state = 7;
+  for (int k = 0; k < 20000; ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double u = static_cast<double>(state >> 11) / 9007199254740992.0;
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double v = static_cast<double>(state >> 11) / 9007199254740992.0;
+    const double altitude = std::asin(u), azimuth = 2 * M_PI * v;
+    const std::size_t i = t.index(t.direction(altitude, azimuth));
+    const rad::SkyPatches::Bounds b = t.bounds(i);
+    EXPECT_GE(altitude, b.altitude0 - 1e-12);
+    EXPECT_LE(altitude, b.altitude1 + 1e-12);
+    if (i != 144) {
+      const double a = std::remainder(azimuth - (b.azimuth0 + b.azimuth1) / 2, 2 * M_PI);
+      EXPECT_LE(std::abs(a), (b.azimuth1 - b.azimuth0) / 2 + 1e-12);
+    }
+  }
+  // A north other than +y turns the numbering with it.
+  const rad::SkyPatches turned(1, Vec3d(0, 0, 1), Vec3d(1, 0, 0));
+  EXPECT_EQ(turned.index(Vec3d(1, 0, 0.01).normalized()), 0u);
+  EXPECT_EQ(turned.index(Vec3d(1, -0.2, 0.01).normalized()), 1u);  // east is north x up = -y
+  EXPECT_EQ(turned.index(Vec3d(0.2, -1, 0.01).normalized()), 7u);  // 79 degrees east: 78-90
+}
+
+// A patch holds its mean luminance; its light on a horizontal plane is then that times
+// its projected solid angle, which is off where the luminance changes across the patch
+// (by 0.4% for the overcast sky's Tregenza patches, a quarter of that at MF:2).
+TEST(SkyPatches, SkyVectorKeepsTheSkysHorizontalIlluminance) {
+  for (const int n : {1, 2}) {
+    const rad::SkyPatches patches(n);
+    rad::SkyModel overcast;
+    overcast.type = rad::SkyModel::Type::cie_overcast;
+    overcast.zenith_luminance = 1000;
+    overcast.ground_luminance = 123;
+    const std::vector<double> v = rad::sky_vector(patches, overcast);
+    ASSERT_EQ(v.size(), patches.size() + 1);
+    EXPECT_EQ(v.back(), 123);
+    double horizontal = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) horizontal += v[i] * patches.projected_solid_angle(i);
+    const double bound = 0.005 / (n * n);
+    EXPECT_NEAR(horizontal / (7 * M_PI * 1000 / 9), 1, bound) << "MF:" << n;
+    rad::SkyModel clear;
+    clear.type = rad::SkyModel::Type::cie;
+    clear.cie_type = 12;
+    clear.sun = Vec3d(0.3, -0.6, 0.74).normalized();
+    const std::vector<double> c = rad::sky_vector(patches, clear);
+    horizontal = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) horizontal += c[i] * patches.projected_solid_angle(i);
+    EXPECT_NEAR(horizontal / clear.horizontal_illuminance(), 1, bound) << "MF:" << n;
+  }
+}
+
+// A 4 x 5 x 3 room of grey walls whose south facade (y = 0) has a 2 x 1.2 m window
+// over (1, 0.9)-(3, 2.1), glazed at 0.8, under a 4 m x 1 m overhang at 2.4 m: points
+// see the sky through the glass, past the overhang, and the ground.
+std::string south_room(const test::TempDir& dir, const std::string& sky) {
+  std::string obj = "mtllib room.mtl\nusemtl grey\n";
+  int v = 0;
+  auto quad = [&](std::array<Vec3d, 4> c) {
+    for (const Vec3d& p : c) obj += fmt::format("v {} {} {}\n", p[0], p[1], p[2]);
+    obj += fmt::format("f {} {} {} {}\n", v + 1, v + 2, v + 3, v + 4);
+    v += 4;
+  };
+  quad({Vec3d(0, 0, 0), Vec3d(4, 0, 0), Vec3d(4, 5, 0), Vec3d(0, 5, 0)});  // floor, up
+  quad({Vec3d(0, 0, 3), Vec3d(0, 5, 3), Vec3d(4, 5, 3), Vec3d(4, 0, 3)});  // ceiling, down
+  quad({Vec3d(0, 0, 0), Vec3d(0, 5, 0), Vec3d(0, 5, 3), Vec3d(0, 0, 3)});  // west wall, +x
+  quad({Vec3d(4, 0, 0), Vec3d(4, 0, 3), Vec3d(4, 5, 3), Vec3d(4, 5, 0)});  // east wall, -x
+  quad({Vec3d(0, 5, 0), Vec3d(4, 5, 0), Vec3d(4, 5, 3), Vec3d(0, 5, 3)});  // north wall, -y
+  auto facade = [&](double x0, double z0, double x1, double z1) {            // facing +y
+    quad({Vec3d(x0, 0, z0), Vec3d(x0, 0, z1), Vec3d(x1, 0, z1), Vec3d(x1, 0, z0)});
+  };
+  facade(0, 0, 1, 3);
+  facade(3, 0, 4, 3);
+  facade(1, 0, 3, 0.9);
+  facade(1, 2.1, 3, 3);
+  quad({Vec3d(0, -1, 2.4), Vec3d(0, 0, 2.4), Vec3d(4, 0, 2.4), Vec3d(4, -1, 2.4)});  // overhang, down
+  obj += "usemtl glass\n";
+  quad({Vec3d(1, 0, 0.9), Vec3d(1, 0, 2.1), Vec3d(3, 0, 2.1), Vec3d(3, 0, 0.9)});
+  dir.write("room.obj", obj);
+  dir.write("room.mtl", "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl glass\nKd 0 0 0\nd 0.2\n");
+  return dir.write("room.json", R"({"meshes": [{"file": "room.obj"}], "sky": )" + sky + "}");
+}
+
+TEST(DaylightCoefficients, AnHoursSkyVectorTimesTheCoefficientsIsItsDirectSky) {
+  test::TempDir dir;
+  const std::vector<std::string> skies = {
+      R"({"type": "cie_overcast", "horizontal_illuminance": 10000, "ground_reflectance": 0.2})",
+      R"({"type": "cie", "number": 12, "horizontal_illuminance": 12000, "ground_reflectance": 0.2,
+          "sun": {"altitude": 35, "azimuth": 160, "direct_normal": 60000}})",
+      R"({"type": "cie", "number": 7, "horizontal_illuminance": 20000, "ground_reflectance": 0.2,
+          "sun": {"altitude": 60, "azimuth": 200, "direct_normal": 40000}})",
+      R"({"type": "cie", "number": 13, "horizontal_illuminance": 15000, "ground_reflectance": 0.2,
+          "sun": {"altitude": 15, "azimuth": 120, "direct_normal": 30000}})",
+  };
+  // The geometry is the same for every sky: one set of coefficients per point.
+  const std::string first = south_room(dir, skies[0]);
+  const LoadedScene room = load_scene(dir.path("room.obj"));
+  ASSERT_FALSE(room.glazing.empty());
+  const rad::Visibility visibility(*room.mesh);
+  const auto sources = rad::read_daylight(first, room.glazing, room.openings);
+  std::vector<Vec3d> points;
+  for (double y : {0.25, 0.75, 1.5, 2.5, 4.0})
+    for (double x : {0.3, 1.0, 2.0, 3.4}) points.emplace_back(x, y, 0.85);
+  const Vec3d up(0, 0, 1);
+  for (const int n : {1, 2, 4}) {
+    const rad::SkyPatches patches(n);
+    std::vector<rad::SkyCoefficients> coefficients;
+    for (const Vec3d& p : points)
+      coefficients.push_back(rad::direct_sky_coefficients(visibility, sources.back(), patches, p, up, 48));
+    double worst = 0;
+    for (const std::string& sky : skies) {
+      const auto hour = rad::read_daylight(south_room(dir, sky), room.glazing, room.openings);
+      const rad::Luminaire& hour_sky = hour.back();
+      const std::vector<double> vector = rad::sky_vector(patches, hour_sky.daylight->sky);
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const double exact = rad::daylight_illuminance(&visibility, hour_sky, points[k], up, nullptr, 48);
+        const double product = coefficients[k].illuminance(vector);
+        worst = std::max(worst, std::abs(product / exact - 1));
+        if (n == 4) {
+          EXPECT_NEAR(product / exact, 1, 0.01) << sky << " at " << points[k];
+        }
+      }
+    }
+    std::printf("direct sky from MF:%d coefficients: worst %.3f%% over %zu points and %zu skies\n", n, 100 * worst,
+                points.size(), skies.size());
+  }
+}
+
+}  // namespace
+}  // namespace dynrad
