@@ -34,11 +34,12 @@ ci_runs() {
     ldt) echo 60000 ;;
     gltf) echo 4000 ;;  # assimp's glTF reader, text glTF with embedded buffers: about 80-150 a second (2026-12)
     glb) echo 300000 ;;  # the .glb check of `dynrad view` (tinygltf): 400,000 took 22 s (2026-12)
+    epw) echo 50000 ;;  # the weather reader, from memory, each input read twice: 50,000 took 15 s (2026-12)
     *) echo 60000 ;;
   esac
 }
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene gltf glb ies ldt)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply off stl scene gltf glb ies ldt epw)
 
 scripts/install-deps.sh
 scripts/configure-reliability.sh
