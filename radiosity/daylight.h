@@ -121,12 +121,20 @@ double daylight_illuminance(const Visibility* visibility, const Luminaire& l, co
 
 // The "sky" section of a JSON scene file, as luminaires (the sun first, when it has a
 // direct-normal illuminance, then the sky). Keys:
-//   "type"        "cie_overcast" (the default), "cie" (with "number": 1-15) or "uniform"
+//   "type"        "cie_overcast" (the default), "cie" (with "number": 1-15), "perez" or
+//                 "uniform"
+//   "diffuse_horizontal_irradiance", "direct_normal_irradiance" (W/m2): the hour's
+//                 weather, for "perez" and required by it (with "sun"): the Perez
+//                 all-weather sky and luminous efficacy (radiosity/climate/perez.h)
+//   "dew_point"   (C), for "perez": its precipitable water (default 2 cm)
 //   "horizontal_illuminance" or "diffuse_horizontal" (lx, from the sky alone), or
-//   "zenith_luminance" (cd/m^2); default 10000 lx horizontal
+//   "zenith_luminance" (cd/m^2); default 10000 lx horizontal, for "perez" the diffuse
+//   irradiance times its luminous efficacy
 //   "sun"         {"latitude", "longitude", "time": "2026-06-21T12:00", "timezone",
 //                  "direct_normal" (lx)} or {"altitude", "azimuth" (degrees, clockwise
-//                  from north), "direct_normal"}
+//                  from north), "direct_normal"}; for "perez", direct_normal defaults to
+//                  the direct irradiance times its luminous efficacy, and the date gives
+//                  the Sun-Earth distance (with altitude and azimuth: the mean distance)
 //   "ground_reflectance"  default 0.2
 //   "north"       [x, y]: north in the plan (default [0, 1]; up is +z)
 //   "rays"        sky directions per point in the solve: rays x rays (default 32)

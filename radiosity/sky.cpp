@@ -69,6 +69,21 @@ double SkyModel::relative(const Vec3d& d) const {
       const double zs = std::acos(std::clamp(OpenMesh::dot(sun, up), -1.0, 1.0));
       return indicatrix(chi) * gradation(cos_z) / (indicatrix(zs) * gradation(1.0));
     }
+    case Type::perez: {
+      // Perez's lv, relative to its value at the zenith. Negative lv (the fits' skies
+      // outside the conditions they were fitted to) is taken as 0; a dark zenith leaves
+      // nothing to be relative to (perez_coefficients never gives one).
+      const PerezSkyCoefficients& p = perez;
+      auto lv = [&](double cz, double angle_to_sun) {
+        const double c = std::cos(angle_to_sun);
+        return (1 + p.a * std::exp(p.b / cz)) * (1 + p.c * std::exp(p.d * angle_to_sun) + p.e * c * c);
+      };
+      const double gamma = std::acos(std::clamp(OpenMesh::dot(d, sun), -1.0, 1.0));
+      const double zs = std::acos(std::clamp(OpenMesh::dot(sun, up), -1.0, 1.0));
+      const double zenith = lv(1.0, zs);
+      if (!(zenith > 0)) return 0;
+      return std::max(0.0, lv(cos_z, gamma)) / zenith;
+    }
   }
   return 0;
 }
@@ -111,7 +126,10 @@ double SkyModel::horizontal_illuminance() const {
 std::string SkyModel::describe() const {
   std::string kind = type == Type::uniform        ? "uniform sky"
                      : type == Type::cie_overcast ? "traditional CIE overcast sky"
-                                                  : fmt::format("CIE standard general sky type {}", cie_type);
+                     : type == Type::cie
+                         ? fmt::format("CIE standard general sky type {}", cie_type)
+                         : fmt::format("Perez all-weather sky (a {:.4g}, b {:.4g}, c {:.4g}, d {:.4g}, e {:.4g})",
+                                       perez.a, perez.b, perez.c, perez.d, perez.e);
   return fmt::format("{}, zenith luminance {:.4g} cd/m2, horizontal illuminance {:.4g} lx from the sky, ground "
                      "{:.4g} cd/m2",
                      kind, zenith_luminance, horizontal_illuminance(), ground_luminance);

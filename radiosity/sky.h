@@ -7,7 +7,11 @@
 //   CIE standard general sky (ISO 15469 / CIE S 011), types 1-15: at zenith angle Z and
 //     angle chi from the sun, L / Lz = f(chi) phi(Z) / (f(Zs) phi(0)), with gradation
 //     phi(Z) = 1 + a exp(b / cos Z) (phi = 1 at the horizon) and indicatrix
-//     f(chi) = 1 + c (exp(d chi) - exp(d pi / 2)) + e cos^2 chi, Zs the sun's zenith angle.
+//     f(chi) = 1 + c (exp(d chi) - exp(d pi / 2)) + e cos^2 chi, Zs the sun's zenith angle;
+//   Perez all-weather (Perez, Seals and Michalsky 1993): L / Lz = lv(Z, gamma) / lv(0, Zs),
+//     lv = (1 + a exp(b / cos Z)) (1 + c exp(d gamma) + e cos^2 gamma), gamma the angle from
+//     the sun, negative lv taken as 0; radiosity/climate/perez.h finds a..e for an hour of
+//     weather.
 // Below the horizon the ground: uniform, L = ground reflectance x the horizontal
 // illuminance of sky and sun / pi (a diffuse ground, unobstructed).
 //
@@ -35,10 +39,18 @@ struct CieSkyParameters {
 // solar corona). Throws std::invalid_argument outside 1-15.
 const CieSkyParameters& cie_sky_parameters(int type);
 
+// The Perez sky's coefficients. The form needs b <= 0 (the gradation is then bounded,
+// and 1 at the horizon when b < 0) and a positive lv at the zenith; perez_coefficients
+// (radiosity/climate/perez.h) sees to both. The default is a uniform sky.
+struct PerezSkyCoefficients {
+  double a = 0, b = 0, c = 0, d = 0, e = 0;
+};
+
 struct SkyModel {
-  enum class Type { uniform, cie_overcast, cie };
+  enum class Type { uniform, cie_overcast, cie, perez };
   Type type = Type::cie_overcast;
   int cie_type = 1;            // Type::cie
+  PerezSkyCoefficients perez;  // Type::perez
   Vec3d up{0, 0, 1};
   Vec3d sun{0, 0, 1};          // unit, towards the sun (its position shapes CIE skies)
   double zenith_luminance = 1;  // cd/m^2
