@@ -121,6 +121,10 @@ bool Solver::shoot_once() {
     shot = unshot * options_.overshoot;
     sender_ = i;
     current_shot_ = shot;
+    if (coefficients_.count > 0) {  // its coefficient channels go with it (solver_coefficients.cpp)
+      std::fill(coefficient_shot_.begin(), coefficient_shot_.end(), 0.0f);
+      shoot_coefficients(i, options_.overshoot, 1);
+    }
     sender_members_.clear();
     sender_centre_ = sender.centre;
     sender_radius_ = sender.radius;

@@ -570,8 +570,16 @@ double Solver::daylight_flux(const Luminaire& l) const {
   tbb::parallel_for(std::size_t(0), patches_.size(), [&](std::size_t p) {
     const Patch& patch = patches_[p];
     std::vector<Vec3d> points{patch.centre};
-    if (l.kind == Luminaire::Kind::sun)
-      for (const Vec3d& c : patch.corners) points.push_back((patch.centre + c) * 0.5);
+    if (l.kind == Luminaire::Kind::sun) {
+      // A shadow ray each: 6 x 6 stratified points. (With the centre and the points
+      // halfway to the corners, a south room's sun, half its window in an overhang's
+      // shadow, brought 3% less than the geometry lets in, and the solve scales every
+      // shot's power to this: tests/daylight_coefficients_test.cpp.)
+      points.clear();
+      const int m = 6;
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j) points.push_back(point_on_triangle(patch.corners, (i + 0.5) / m, (j + 0.5) / m));
+    }
     double e = 0;
     for (const Vec3d& x : points) e += daylight_illuminance(visibility_.get(), l, x, patch.normal, nullptr);
     power[p] = patch.area * e / static_cast<double>(points.size());
@@ -1328,9 +1336,21 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
   // Per receiving patch: a patch's terminal elements mostly come in runs (siblings have
   // neighbouring ids), so the reach of a run is summed before it is booked.
   Rgb incident_total;
+  // Coefficient channels (solver_coefficients.cpp): the same transfer for each.
+  const std::size_t channels = coefficients_.count;
+  std::vector<float> channel_incident(channels);
+  if (channels > 0 && from_luminaire) mix_sky(terminals, reach);
+  const double shot_luminance = shot_radiosity.luminance();
   auto book = [&](std::uint32_t patch_id, double patch_reach) {
     if (patch_reach <= 0) return;
     Patch& receiver = patches_[patch_id];
+    if (channels > 0 && from_luminaire) {
+      incident_coefficients(coefficient_slot_[patch_id], shot_luminance * patch_reach * scale / receiver.area,
+                            channel_incident.data());
+      book_coefficients(patch_id, channel_incident.data(), 1.0f);
+    } else if (channels > 0) {
+      book_coefficients(patch_id, coefficient_shot_.data(), static_cast<float>(patch_reach * scale / receiver.area));
+    }
     mark_surveyed(unit_of_receiver(patch_id));
     const Rgb incident = shot_radiosity * (patch_reach * scale);
     const Rgb reflected = receiver.reflectance * incident;
@@ -1369,8 +1389,16 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
       incident_total += incident;
       part_pending_[k] += shot_radiosity * f;
       cluster_state_[c].dirty = true;
+      if (channels > 0 && from_luminaire) {
+        incident_coefficients(coefficient_slot_[patches_.size() + k], shot_luminance * f * scale,
+                              channel_incident.data());
+        book_part_coefficients(k, channel_incident.data(), 1.0f);
+      } else if (channels > 0) {
+        book_part_coefficients(k, coefficient_shot_.data(), static_cast<float>(f * scale));
+      }
     }
   }
+  if (channels > 0 && from_luminaire) std::fill(coefficient_slot_.begin(), coefficient_slot_.end(), UINT32_MAX);
   // What no front face received: out of the scene, or onto black back faces. In a
   // closed scene only rounding is left; it is booked as absorbed.
   const Rgb not_received = shot_radiosity * power - incident_total;

@@ -222,7 +222,60 @@ class Solver {
   void time_visibility(bool on) { visibility_->time_calls(on); }
   double seconds_in_embree() const { return visibility_->seconds_in_embree(); }
 
+  // Coefficient channels (solver_coefficients.cpp): `count` values per patch carried
+  // beside the colours, each the light of one part of the sky (climate/
+  // daylight_coefficients.h), so that one solve gives the interreflection of every sky.
+  // Every transfer is linear, so each channel moves as the luminance does: a patch that
+  // shoots sends its channels' unshot with the same factors as its luminance, a
+  // receiver takes them with the same form factor and reflectance. The solve itself
+  // (which patch shoots, where the mesh refines, when to stop) is steered by the colours,
+  // whose sky is a sum of the channels' with positive weights, so that it holds every
+  // channel's light. The sky's first shot splits a receiver's light into channels by
+  // `sky_mix` at the receiver's centre: for channel j, the light there per unit of
+  // channel j over the light of the steering sky, both direct (so that the channels'
+  // light sums to the steering sky's with the weights; channels that are no part of
+  // the steering sky, such as the sun's, go along with weight 0). Materials must be
+  // grey, the only source one sky luminaire (throws std::invalid_argument otherwise).
+  struct CoefficientChannels {
+    std::size_t count = 0;
+    // Channels from `relative` on (when below count) are not shares of the steering
+    // sky's light but the light itself: sky_mix writes their irradiance per unit area,
+    // which a receiver takes once, whatever the steering sky brought it (a sun's
+    // light, with its sharp shadows, is not a share of the sky's on the same patch).
+    std::size_t relative = SIZE_MAX;
+    // Writes `count` values to `mix` for a receiving triangle (facing n; a point when its
+    // corners are one).
+    std::function<void(const std::array<Vec3d, 3>& surface, const Vec3d& n, float* mix)> sky_mix;
+  };
+  void carry_coefficients(CoefficientChannels channels);  // before run()
+  // Patch p's mean radiosity per channel, reflected light only (count values).
+  const float* patch_coefficients(std::uint32_t p) const { return coefficient_total_.data() + p * coefficients_.count; }
+  std::size_t coefficient_count() const { return coefficients_.count; }
+
  private:
+  // Coefficient channels (see carry_coefficients; all empty when count is 0).
+  CoefficientChannels coefficients_;
+  std::vector<float> coefficient_unshot_;       // per patch, radiosity not yet shot
+  std::vector<float> coefficient_total_;        // per patch, radiosity received and reflected
+  std::vector<float> coefficient_part_unshot_;  // per cluster part, power not yet shot
+  std::vector<float> coefficient_shot_;         // the current sender's shot (as current_shot_)
+  std::vector<float> coefficient_mix_;          // the sky's shot: per receiver in coefficient_slot_
+  std::vector<std::uint32_t> coefficient_slot_;  // per patch, then per part: its mix's slot (or ~0)
+  // A patch sender: `factor` of its unshot channels into the shot (adding `weight` x
+  // that), 1 - factor left.
+  void shoot_coefficients(std::uint32_t p, double factor, double weight);
+  // The sky's shot: the mix of every receiver it reached (coefficient_slot_).
+  void mix_sky(const std::vector<ElementId>& terminals, const std::vector<double>& reach);
+  // What a receiver of the sky's shot takes per unit area: channel j of the mix at
+  // `slot` times `factor` (the steering sky's light there), to `out`.
+  // The absolute channels (CoefficientChannels::relative) are taken at the first
+  // booking of a slot only; `booked` marks it.
+  void incident_coefficients(std::uint32_t slot, double factor, float* out);
+  std::vector<char> coefficient_booked_;  // per slot of the sky's shot
+  // Books a patch's reception (see account_transfers): `incident` times `factor` per
+  // unit area.
+  void book_coefficients(std::uint32_t patch, const float* incident, float factor);
+  void book_part_coefficients(std::uint32_t part, const float* incident, float factor);
   // A sign of life during a long shot (SolveOptions::on_busy): counts the receiving points
   // computed and calls on_busy when 2 s have passed since the last call.
   void beat();

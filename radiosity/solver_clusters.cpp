@@ -115,6 +115,14 @@ Rgb Solver::start_cluster_shot(std::uint32_t c) {
     if (share > 0) sender_parts_.push_back({part.point, part.normal, part.area, share});
     part_unshot_[k] = Rgb();
   }
+  // Its coefficient channels, all sent (solver_coefficients.cpp).
+  const std::size_t channels = coefficients_.count;
+  std::fill(coefficient_shot_.begin(), coefficient_shot_.end(), 0.0f);
+  for (std::uint32_t k = cl.first_part; channels > 0 && k < cl.first_part + cl.part_count; ++k)
+    for (std::size_t j = 0; j < channels; ++j) {
+      coefficient_shot_[j] += coefficient_part_unshot_[k * channels + j];
+      coefficient_part_unshot_[k * channels + j] = 0;
+    }
   sender_cluster_centre_ = cl.centre;
   sender_cluster_radius_ = cl.radius;
   return total;

@@ -47,6 +47,7 @@ Rgb Solver::start_group_shot(std::uint32_t leader) {
   const double total_magnitude = std::abs(mean.r) + std::abs(mean.g) + std::abs(mean.b);
   sender_members_.clear();
   sender_member_unshot_.clear();
+  std::fill(coefficient_shot_.begin(), coefficient_shot_.end(), 0.0f);
   shape_.on = false;
   shape_.max_weight = 1;
   double cumulated = 0;
@@ -70,6 +71,7 @@ Rgb Solver::start_group_shot(std::uint32_t leader) {
     sender_members_.push_back(m);
     sender_member_unshot_.push_back(p.unshot);
     p.unshot = p.unshot * (1 - options_.overshoot);  // update(i), as for one patch
+    if (coefficients_.count > 0) shoot_coefficients(groups_.members[n], options_.overshoot, p.area / g.area);
   }
   for (SenderMember& m : sender_members_) m.cumulated = cumulated > 0 ? m.cumulated / cumulated : 1.0;
   sender_members_.back().cumulated = 1.0;

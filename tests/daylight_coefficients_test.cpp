@@ -3,10 +3,16 @@
 // product of an hour's sky vector with the coefficients is the direct computation of
 // that hour's sky.
 #include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "radiosity/climate/coefficient_solve.h"
 #include "radiosity/climate/daylight_coefficients.h"
 #include "radiosity/climate/sky_patches.h"
 #include "radiosity/daylight.h"
+#include "radiosity/grid.h"
+#include "radiosity/lit_scene.h"
 #include "radiosity/luminaire.h"
+#include "radiosity/settings.h"
+#include "radiosity/solver.h"
 #include "radiosity/sky.h"
 #include "radiosity/visibility.h"
 #include "test_support.h"
@@ -165,6 +171,124 @@ TEST(DaylightCoefficients, AnHoursSkyVectorTimesTheCoefficientsIsItsDirectSky) {
     std::printf("direct sky from MF:%d coefficients: worst %.3f%% over %zu points and %zu skies\n", n, 100 * worst,
                 points.size(), skies.size());
   }
+}
+
+// A solve of `luminaires` in the room of `obj` (grey: the coefficients' condition), to
+// 0.4% unshot, at annual daylight's patch size; with `channels`, carrying them.
+struct Solved {
+  LoadedScene scene;
+  std::unique_ptr<ElementHierarchy> hierarchy;
+  std::unique_ptr<rad::Solver> solver;
+  rad::LitScene lit;
+};
+std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Luminaire> luminaires,
+                                   const std::function<rad::Solver::CoefficientChannels(const rad::Visibility&)>& channels) {
+  auto out = std::make_unique<Solved>();
+  out->scene = load_scene(obj);
+  SceneMesh& mesh = *out->scene.mesh;
+  rad::RefineSettings refine;
+  rad::SolveOptions options;
+  rad::SettingsRequest request;
+  request.converge = 0.004;
+  // The patch size of annual daylight (CoefficientOptions::patch_factor), for both.
+  {
+    rad::RefineSettings r;
+    rad::SolveOptions o;
+    request.patch_size = rad::apply_settings(mesh, request, r, o).patch_size * rad::CoefficientOptions{}.patch_factor;
+  }
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options);
+  options.emission_scale = rad::kLumensPerWatt;
+  options.min_reflectance = 1e-4;
+  make_patches(mesh, applied.patch_size);
+  out->hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(applied.patch_size));
+  out->solver = std::make_unique<rad::Solver>(mesh, *out->hierarchy, options, refine, luminaires);
+  std::unique_ptr<rad::Visibility> visibility;
+  if (channels) {
+    visibility = std::make_unique<rad::Visibility>(mesh);
+    out->solver->carry_coefficients(channels(*visibility));
+  }
+  out->solver->run();
+  const rad::Solver::Output result = out->solver->output();
+  out->lit = rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.emission_scale, true);
+  return out;
+}
+
+// The issue's test: the coefficients of one solve, for several hours (skies with and
+// without the sun), against a solve of each hour's own sky and sun, at every grid point.
+TEST(DaylightCoefficients, OneSolvesCoefficientsGiveEachHoursOwnSolve) {
+  test::TempDir dir;
+  const std::string overcast = R"({"type": "cie_overcast", "horizontal_illuminance": 10000, "ground_reflectance": 0.2})";
+  const std::vector<std::string> hours = {
+      overcast,
+      R"({"type": "cie", "number": 12, "horizontal_illuminance": 12000, "ground_reflectance": 0.2,
+          "sun": {"altitude": 35, "azimuth": 160, "direct_normal": 60000}})",
+      R"({"type": "cie", "number": 7, "horizontal_illuminance": 20000, "ground_reflectance": 0.2,
+          "sun": {"altitude": 60, "azimuth": 200, "direct_normal": 40000}})",
+  };
+  south_room(dir, overcast);
+  const std::string obj = dir.path("room.obj");
+  const LoadedScene room = load_scene(obj);
+  const auto scene_sky = rad::read_daylight(dir.path("room.json"), room.glazing, room.openings).back();
+  const rad::CoefficientOptions options;
+  const rad::Luminaire steering = rad::steering_sky(scene_sky, options.steering_ground);
+  const rad::SkyPatches fine(options.fine_subdivision), indirect(options.indirect_subdivision);
+  // The sun positions of the hours.
+  std::vector<Vec3d> hour_suns;
+  std::vector<std::vector<rad::Luminaire>> hour_sources;
+  for (const std::string& sky : hours) {
+    dir.write("room.json", R"({"meshes": [{"file": "room.obj"}], "sky": )" + sky + "}");
+    hour_sources.push_back(rad::read_daylight(dir.path("room.json"), room.glazing, room.openings));
+    hour_suns.push_back(hour_sources.back().size() > 1 ? hour_sources.back().back().daylight->sun : Vec3d(0, 0, -1));
+  }
+  std::vector<rad::SunNodes> hour_nodes;
+  const std::vector<Vec3d> suns = rad::sun_positions(indirect, options.sun_spacing, hour_suns, &hour_nodes);
+  const auto coefficient_solve = solve_room(obj, {steering}, [&](const rad::Visibility& v) {
+    return rad::coefficient_channels(v, steering, indirect, suns, options);
+  });
+  std::vector<Vec3d> points;
+  for (double y : {0.5, 1.5, 2.5, 4.0})
+    for (double x : {0.5, 2.0, 3.5}) points.emplace_back(x, y, 0.85);
+  const Vec3d up(0, 0, 1);
+  std::vector<rad::PointCoefficients> coefficients;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    coefficients.push_back(rad::point_coefficients(coefficient_solve->lit, *coefficient_solve->scene.mesh,
+                                                   *coefficient_solve->solver, steering, fine, indirect, points[k], up,
+                                                   options, 0x5eedull + k));
+  // The steering sky itself, through the coefficients, is the steering solve's gather.
+  {
+    rad::HourSky uniform = rad::hour_sky(steering.daylight->sky, up, 0, fine, indirect, {});
+    rad::GatherOptions gather;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const rad::GridPointResult g = rad::gather_point(coefficient_solve->lit, points[k], up, gather, 0x5eedull + k);
+      const rad::HourIlluminance e = rad::hour_illuminance(coefficients[k], uniform, 0);
+      EXPECT_NEAR(e.indirect / g.indirect, 1, 1e-4) << points[k];
+      EXPECT_NEAR(e.sky_direct / g.direct, 1, 0.003) << points[k];
+    }
+  }
+  double worst = 0, worst_indirect = 0;
+  for (std::size_t h = 0; h < hours.size(); ++h) {
+    const std::string& sky = hours[h];
+    const auto& sources = hour_sources[h];
+    const auto own = solve_room(obj, sources, nullptr);
+    const rad::Daylight& day = *sources.back().daylight;
+    const double sun = sources.size() > 1 ? day.direct_normal : 0.0;
+    const rad::HourSky hour = rad::hour_sky(day.sky, day.sun, sun, fine, indirect, hour_nodes[h]);
+    rad::GatherOptions gather;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const rad::GridPointResult g = rad::gather_point(own->lit, points[k], up, gather, 0x5eedull + k);
+      const double sun_direct = rad::sun_illuminance(*coefficient_solve->lit.visibility, day.glazing.get(), points[k],
+                                                     up, day.sun, sun);
+      const rad::HourIlluminance e = rad::hour_illuminance(coefficients[k], hour, sun_direct);
+      worst = std::max(worst, std::abs(e.total / g.illuminance - 1));
+      worst_indirect = std::max(worst_indirect, std::abs(e.indirect / g.indirect - 1));
+      EXPECT_NEAR(e.total / g.illuminance, 1, 0.01) << sky << " at " << points[k] << ": direct " << g.direct
+                                                    << " vs " << e.sun + e.sky_direct << ", indirect " << g.indirect
+                                                    << " vs " << e.indirect;
+    }
+  }
+  std::printf("coefficients of one solve against each hour's solve: worst %.3f%% (indirect alone %.3f%%) over %zu "
+              "points and %zu hours\n",
+              100 * worst, 100 * worst_indirect, points.size(), hours.size());
 }
 
 }  // namespace

@@ -1,0 +1,220 @@
+// Daylight coefficients with interreflection from one solve (see coefficient_solve.h).
+#include "radiosity/climate/coefficient_solve.h"
+
+#include "mesh/scene_mesh.h"
+#include "radiosity/daylight.h"
+#include "radiosity/lit_scene.h"
+#include "radiosity/random.h"
+#include "radiosity/visibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace dynrad::rad {
+
+Luminaire steering_sky(const Luminaire& scene_sky, double ground_luminance) {
+  auto day = std::make_shared<Daylight>();
+  const Daylight& from = *scene_sky.daylight;
+  day->sky.type = SkyModel::Type::uniform;
+  day->sky.up = from.sky.up;
+  day->sky.zenith_luminance = 1;
+  day->sky.ground_luminance = ground_luminance;
+  day->glazing = from.glazing;
+  day->side = from.side;
+  day->horizontal_sky = M_PI;
+  day->sky_summary = "the steering sky of daylight coefficients: uniform, luminance 1, the ground " +
+                     std::to_string(ground_luminance);
+  Luminaire l;
+  l.kind = Luminaire::Kind::sky;
+  l.name = "sky";
+  l.daylight = day;
+  return l;
+}
+
+std::vector<Vec3d> sun_positions(const SkyPatches& frame, double spacing, const std::vector<Vec3d>& hour_suns,
+                                 std::vector<SunNodes>* nodes) {
+  const double step = spacing * M_PI / 180;
+  const int rows = static_cast<int>(std::ceil(M_PI / 2 / step)) + 1;
+  const int columns = static_cast<int>(std::ceil(2 * M_PI / step));
+  const Vec3d east = OpenMesh::cross(frame.north(), frame.up());
+  // Each sun's cell (row, column of its lower-left node) and place in it.
+  struct Cell {
+    int row = -1, column = 0;
+    double fa = 0, fb = 0;
+  };
+  std::vector<Cell> cells;
+  std::vector<int> node(static_cast<std::size_t>(rows) * columns, -1);
+  for (const Vec3d& s : hour_suns) {
+    Cell c;
+    const double z = OpenMesh::dot(s, frame.up());
+    if (z > 0) {
+      const double a = std::asin(std::min(1.0, z)) / step;
+      double b = std::atan2(OpenMesh::dot(s, east), OpenMesh::dot(s, frame.north())) / step;
+      if (b < 0) b += columns;
+      c.row = std::min(static_cast<int>(a), rows - 2);
+      c.column = static_cast<int>(b) % columns;
+      c.fa = a - c.row;
+      c.fb = b - std::floor(b);
+      for (int da = 0; da < 2; ++da)
+        for (int db = 0; db < 2; ++db)
+          node[static_cast<std::size_t>((c.row + da) * columns + (c.column + db) % columns)] = 0;
+    }
+    cells.push_back(c);
+  }
+  std::vector<Vec3d> out;
+  for (int r = 0; r < rows; ++r)
+    for (int k = 0; k < columns; ++k) {
+      int& n = node[static_cast<std::size_t>(r * columns + k)];
+      if (n < 0) continue;
+      n = static_cast<int>(out.size());
+      out.push_back(frame.direction(std::min(r * step, M_PI / 2), k * step));
+    }
+  if (nodes) {
+    nodes->clear();
+    for (const Cell& c : cells) {
+      SunNodes h;
+      if (c.row >= 0)
+        for (int da = 0; da < 2; ++da)
+          for (int db = 0; db < 2; ++db) {
+            const int k = da * 2 + db;
+            h.position[static_cast<std::size_t>(k)] =
+                node[static_cast<std::size_t>((c.row + da) * columns + (c.column + db) % columns)];
+            h.weight[static_cast<std::size_t>(k)] =
+                static_cast<float>((da ? c.fa : 1 - c.fa) * (db ? c.fb : 1 - c.fb));
+          }
+      nodes->push_back(h);
+    }
+  }
+  return out;
+}
+
+Solver::CoefficientChannels coefficient_channels(const Visibility& visibility, const Luminaire& steering,
+                                                 const SkyPatches& indirect, const std::vector<Vec3d>& suns,
+                                                 const CoefficientOptions& options) {
+  Solver::CoefficientChannels c;
+  const std::size_t sky_count = indirect.size() + 1;
+  c.count = sky_count + suns.size();
+  c.relative = sky_count;  // the suns' channels hold their irradiance itself
+  const double ground = steering.daylight->sky.ground_luminance;
+  const Glazing* glazing = steering.daylight->glazing.get();
+  c.sky_mix = [&visibility, &steering, &indirect, &suns, options, ground, glazing, sky_count](
+                  const std::array<Vec3d, 3>& surface, const Vec3d& n, float* mix) {
+    const Vec3d centre = (surface[0] + surface[1] + surface[2]) / 3.0;
+    const bool point = (surface[1] - surface[0]).sqrnorm() == 0 && (surface[2] - surface[0]).sqrnorm() == 0;
+    // The sky: binned at the centre and halfway to each corner (the mean of the four).
+    std::vector<double> bins(sky_count, 0.0);
+    const SkyDirectionSink sink = [&](const Vec3d& d, double weight) { bins[indirect.index(d)] += weight; };
+    int points = 0;
+    for (int k = point ? 3 : 0; k < 4; ++k, ++points) {
+      const Vec3d x = k == 3 ? centre : (centre + surface[static_cast<std::size_t>(k)]) / 2.0;
+      daylight_illuminance(&visibility, steering, x, n, nullptr, options.mix_side, nullptr, &sink);
+    }
+    // The steering sky's light is the bins weighted by its luminances (1 above, `ground` below).
+    double steering_light = 0;
+    for (std::size_t j = 0; j + 1 < sky_count; ++j) steering_light += bins[j];
+    steering_light += ground * bins.back();
+    steering_light /= points;
+    for (std::size_t j = 0; j < sky_count; ++j)
+      mix[j] = steering_light > 0 ? static_cast<float>(bins[j] / points / steering_light)
+                                  : static_cast<float>(1.0 / (static_cast<double>(sky_count - 1) + ground));
+    if (suns.empty()) return;
+    // The suns: the mean illuminance over stratified points of the triangle.
+    const int m = point ? 1 : std::max(1, options.sun_points);
+    std::vector<Vec3d> at;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) {
+        const double r = std::sqrt((i + 0.5) / m), v = (j + 0.5) / m;
+        at.push_back(point ? centre : surface[0] * (1 - r) + surface[1] * (r * (1 - v)) + surface[2] * (r * v));
+      }
+    for (std::size_t k = 0; k < suns.size(); ++k) {
+      double sum = 0;
+      if (OpenMesh::dot(suns[k], n) > 0)
+        for (const Vec3d& x : at) sum += sun_illuminance(visibility, glazing, x, n, suns[k], 1.0);
+      mix[sky_count + k] = static_cast<float>(sum / static_cast<double>(at.size()));
+    }
+  };
+  return c;
+}
+
+PointCoefficients point_coefficients(const LitScene& lit, const SceneMesh& mesh, const Solver& solver,
+                                     const Luminaire& steering, const SkyPatches& fine, const SkyPatches& indirect,
+                                     const Vec3d& point, const Vec3d& normal, const CoefficientOptions& options,
+                                     std::uint64_t seed) {
+  const Visibility& vis = *lit.visibility;
+  PointCoefficients out;
+  int backs = 0;  // inside a solid: most of six axis rays meet the backs of faces (as gather_point)
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      Vec3d d(0.0);
+      d[axis] = sign;
+      backs += vis.trace(point, d, d) == Visibility::Hit::back;
+    }
+  if (backs >= 4) {
+    out.masked = true;
+    return out;
+  }
+  out.direct = direct_sky_coefficients(vis, steering, fine, point, normal, options.point_side);
+  const std::size_t count = solver.coefficient_count(), sky_count = indirect.size() + 1;
+  const double ground = steering.daylight->sky.ground_luminance;
+  std::vector<double> sum(count, 0.0);
+  const Vec3d t = OpenMesh::cross(std::abs(normal[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), normal).normalized();
+  const Vec3d b = OpenMesh::cross(normal, t);
+  std::uint64_t state = mix(seed);
+  const int side = std::max(1, options.point_side);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const double u1 = (i + uniform(state)) / side, u2 = (j + uniform(state)) / side;
+      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+      const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - u1));
+      const Visibility::Intersection hit = vis.intersect(point + normal * (1e-7 * lit.diagonal), dir);
+      if (!hit.hit || !hit.front) continue;
+      const auto& tri = lit.triangles[static_cast<std::size_t>(hit.face)];
+      const double here = (lit.radiosity[tri[0]] * (1 - hit.u - hit.v) + lit.radiosity[tri[1]] * hit.u +
+                           lit.radiosity[tri[2]] * hit.v)
+                              .luminance();
+      const std::uint32_t patch = mesh.patch(FaceHandle(hit.face));
+      const float* c = solver.patch_coefficients(patch);
+      double mean = 0;  // the steering sky's radiosity of the patch, from its channels
+      for (std::size_t k = 0; k + 1 < sky_count; ++k) mean += c[k];
+      mean += ground * c[sky_count - 1];
+      if (!(mean > 0)) continue;
+      const double shape = here / mean;
+      for (std::size_t k = 0; k < count; ++k) sum[k] += shape * c[k];
+    }
+  out.indirect.resize(count);
+  for (std::size_t k = 0; k < count; ++k)
+    out.indirect[k] = static_cast<float>(sum[k] / (static_cast<double>(side) * side));
+  return out;
+}
+
+HourSky hour_sky(const SkyModel& sky, const Vec3d& sun, double direct_normal, const SkyPatches& fine,
+                 const SkyPatches& indirect, const SunNodes& nodes) {
+  HourSky h;
+  h.fine = sky_vector(fine, sky, 3);
+  h.indirect = sky_vector(indirect, sky, 8);
+  h.sun = sun;
+  h.direct_normal = direct_normal;
+  h.nodes = nodes;
+  if (direct_normal > 0 && nodes.position[0] < 0) {
+    const std::size_t k = indirect.index(sun);
+    if (k != indirect.ground()) h.indirect[k] += direct_normal / indirect.solid_angle(k);
+  }
+  return h;
+}
+
+HourIlluminance hour_illuminance(const PointCoefficients& c, const HourSky& hour, double sun_direct) {
+  HourIlluminance e;
+  e.sun = sun_direct;
+  e.sky_direct = c.direct.illuminance(hour.fine);
+  for (std::size_t k = 0; k < hour.indirect.size(); ++k) e.indirect += c.indirect[k] * hour.indirect[k];
+  if (hour.direct_normal > 0)
+    for (std::size_t k = 0; k < 4; ++k)
+      if (hour.nodes.position[k] >= 0)
+        e.indirect += c.indirect[hour.indirect.size() + static_cast<std::size_t>(hour.nodes.position[k])] *
+                      hour.nodes.weight[k] * hour.direct_normal;
+  e.total = e.sun + e.sky_direct + e.indirect;
+  return e;
+}
+
+}  // namespace dynrad::rad
