@@ -29,6 +29,7 @@ Command add_probe_command(CLI::App& app);
 Command add_grid_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
 Command add_validate_command(CLI::App& app);
+Command add_annual_command(CLI::App& app);
 
 // Options every command that loads a scene shares.
 struct LoadOptions {

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   std::map<CLI::App*, cli::Command> commands;
   for (auto add : {cli::add_solve_command, cli::add_info_command, cli::add_clean_command, cli::add_diff_command,
                     cli::add_plot_command, cli::add_probe_command, cli::add_grid_command, cli::add_view_command,
-                    cli::add_validate_command}) {
+                    cli::add_validate_command, cli::add_annual_command}) {
     auto run = add(app);
     commands[app.get_subcommands({}).back()] = run;
   }

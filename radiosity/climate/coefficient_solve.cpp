@@ -191,8 +191,21 @@ PointCoefficients point_coefficients(const LitScene& lit, const SceneMesh& mesh,
 HourSky hour_sky(const SkyModel& sky, const Vec3d& sun, double direct_normal, const SkyPatches& fine,
                  const SkyPatches& indirect, const SunNodes& nodes) {
   HourSky h;
-  h.fine = sky_vector(fine, sky, 3);
-  h.indirect = sky_vector(indirect, sky, 8);
+  h.fine = sky_vector(fine, sky, 2);
+  if (fine.subdivision() % indirect.subdivision() == 0) {
+    // The fine patches tile the coarse ones: their means, weighted by solid angle.
+    h.indirect.assign(indirect.size() + 1, 0.0);
+    std::vector<double> solid(indirect.size(), 0.0);
+    for (std::size_t i = 0; i < fine.size(); ++i) {
+      const std::size_t k = indirect.index(fine.centre(i));
+      h.indirect[k] += h.fine[i] * fine.solid_angle(i);
+      solid[k] += fine.solid_angle(i);
+    }
+    for (std::size_t k = 0; k < indirect.size(); ++k) h.indirect[k] /= solid[k];
+    h.indirect.back() = h.fine.back();
+  } else {
+    h.indirect = sky_vector(indirect, sky, 8);
+  }
   h.sun = sun;
   h.direct_normal = direct_normal;
   h.nodes = nodes;

@@ -108,7 +108,9 @@ struct HourSky {
   double direct_normal = 0;  // lx; 0: no sun
   SunNodes nodes;            // its channels among the sun positions
 };
-// `sky` with its ground luminance set; the sun at `sun` (unit) with `direct_normal` lx,
+// `sky` with its ground luminance set (its patches' means from 2 x 2 points each: the
+// fine patches are 3 degrees, and the indirect ones their solid-angle-weighted means
+// when they nest, as MF:2 in MF:4 do); the sun at `sun` (unit) with `direct_normal` lx,
 // at sun positions `nodes` (none: then, should the sun shine, through its indirect
 // patch as a patch of the same power).
 HourSky hour_sky(const SkyModel& sky, const Vec3d& sun, double direct_normal, const SkyPatches& fine,

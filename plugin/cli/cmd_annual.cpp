@@ -1,0 +1,333 @@
+// `dynrad annual SCENE --weather FILE.epw [-o PREFIX] [--occupied 8-18]`: a year of
+// daylight on the scene's grids from the daylight coefficients of one solve
+// (radiosity/climate/coefficient_solve.h, annual.h) and the metrics of IES LM-83 and
+// EN 17037 (radiosity/climate/annual_metrics.h).
+//
+// Writes, beside PREFIX:
+//   PREFIX_annual.json           the site, the conventions, every grid's metrics
+//   PREFIX_NAME_hourly.npy       per grid, the illuminance (lx, float32) per weather row
+//                                and point, shape (rows, points): numpy.load() reads it
+//   PREFIX_NAME_points.csv       per point: position, DA, cDA, UDI, sDA and ASE hours
+//   PREFIX_NAME_DA300.png, _cDA300.png, _UDI.png, _ASE.png   false-colour plans: the
+//                                share of occupied hours at 300 lx (the basis of sDA),
+//                                continuous DA, useful UDI, and the hours of direct sun
+//                                over 1000 lx (the basis of ASE)
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "plugin/cli/commands.h"
+#include "plugin/cli/grid_picture.h"
+#include "plugin/cli/png.h"
+#include "radiosity/climate/annual.h"
+#include "radiosity/daylight.h"
+#include "radiosity/grid_scene.h"
+#include "radiosity/lit_scene.h"
+#include "radiosity/settings.h"
+#include "radiosity/solver.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+namespace dynrad::cli {
+namespace {
+
+struct AnnualCliOptions {
+  LoadOptions load;
+  std::string weather, output, occupied = "8-18";
+};
+
+// "8-18": the first and last hour of the occupied day (08:00 to 18:00).
+std::pair<int, int> parse_occupied(const std::string& text) {
+  int first = -1, last = -1;
+  char dash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &first, &dash, &last, &extra) != 3 || dash != '-' || first < 0 ||
+      last > 24 || first >= last)
+    throw InputError("--occupied", 0, "'" + text + "' is not a span of hours; write FIRST-LAST, 0 <= FIRST < LAST <= 24, "
+                                             "e.g. 8-18 for 08:00 to 18:00.");
+  return {first, last};
+}
+
+// The scene file's "sky": its ground reflectance and north, when it has them.
+void scene_sky_settings(const std::string& scene, rad::AnnualOptions& options) {
+  if (std::filesystem::path(scene).extension() != ".json") return;
+  std::ifstream in(scene);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object() || !j.contains("sky") || !j["sky"].is_object()) return;
+  const auto& sky = j["sky"];
+  if (sky.contains("ground_reflectance") && sky["ground_reflectance"].is_number())
+    options.ground_reflectance = sky["ground_reflectance"].get<double>();
+  if (sky.contains("north") && sky["north"].is_array() && sky["north"].size() == 2)
+    options.north = Vec3d(sky["north"][0].get<double>(), sky["north"][1].get<double>(), 0).normalized();
+}
+
+// A little-endian float32 array of shape (rows, columns) in NumPy's .npy format 1.0.
+void write_npy(const std::string& path, const std::vector<float>& values, std::size_t rows, std::size_t columns) {
+  AtomicFile file(path);
+  std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", rows, columns);
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::ostream& out = file.stream();
+  out.write("\x93NUMPY\x01\x00", 8);
+  const auto length = static_cast<std::uint16_t>(header.size());
+  const char size[2] = {static_cast<char>(length & 0xff), static_cast<char>(length >> 8)};
+  out.write(size, 2);
+  out << header;
+  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
+  file.commit();
+}
+
+int run_annual(const AnnualCliOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  const auto [first_hour, last_hour] = parse_occupied(options.occupied);
+  const rad::Weather weather = rad::read_epw(options.weather);
+  const std::vector<rad::GridSpec> grids = rad::read_grids(options.load.input);
+  if (grids.empty())
+    throw InputError(options.load.input, 0,
+                     "annual daylight is computed on calculation grids, and the scene has none: add \"grids\" (see "
+                     "docs/lighting-design.md).");
+  const std::string prefix =
+      !options.output.empty() ? options.output
+                              : (std::filesystem::path(options.load.input).parent_path() /
+                                 std::filesystem::path(options.load.input).stem()).string();
+  check_output_writable(prefix + "_annual.json");
+  for (const rad::GridSpec& g : grids)
+    for (const char* suffix : {"_hourly.npy", "_points.csv", "_DA300.png", "_cDA300.png", "_UDI.png", "_ASE.png"})
+      check_output_writable(prefix + "_" + g.name + suffix);
+
+  LoadedScene scene = load_scene(options.load.input, options.load.cleanup(), SimplifyOptions{}, options.load.read());
+  for (const auto& w : scene.warnings) spdlog::warn("{}", w);
+  if (scene.glazing.empty() && scene.openings.empty())
+    throw InputError(options.load.input, 0,
+                     "the model has no windows: no glazing (a material with a transmittance) and no opening, so no "
+                     "daylight comes in. Give the windows' glass a transmittance (Tf or d in the .mtl file).");
+  SceneMesh& mesh = *scene.mesh;
+  // Grey materials of the same luminance reflectance; no emission (daylight alone).
+  std::size_t coloured = 0;
+  for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
+    Material grey = mesh.materials()[m];
+    coloured += grey.reflectance.max_channel() - grey.reflectance.min_channel() > 1e-9;
+    grey.reflectance = Rgb(grey.reflectance.luminance());
+    grey.emission = Rgb();
+    mesh.set_material(m, grey);
+  }
+  if (coloured > 0)
+    spdlog::info("annual daylight: {} coloured materials taken as grey of the same luminance reflectance", coloured);
+
+  rad::AnnualOptions annual;
+  scene_sky_settings(options.load.input, annual);
+  const rad::CoefficientOptions& co = annual.coefficients;
+  const rad::SkyPatches fine(co.fine_subdivision, annual.up, annual.north);
+  const rad::SkyPatches indirect(co.indirect_subdivision, annual.up, annual.north);
+  spdlog::info("{}: {}, {}, {} (latitude {:.3f}, longitude {:.3f}, UTC{:+g}), {} hours", weather.path,
+               weather.site.city, weather.site.region, weather.site.country, weather.site.latitude,
+               weather.site.longitude, weather.site.timezone, weather.hours.size());
+  auto since = [last = std::chrono::steady_clock::now()]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
+  const rad::YearSky year = rad::year_sky(weather, fine, indirect, annual);
+  std::size_t lit_rows = 0;
+  for (char d : year.dark) lit_rows += !d;
+  spdlog::info("skies in {:.1f} s: {} daylit hours; {} sun positions {} degrees apart; direct sky on {} patches "
+               "(MF:{}), interreflection on {} (MF:{})",
+               since(), lit_rows, year.suns.size(), co.sun_spacing, fine.size(), co.fine_subdivision, indirect.size(),
+               co.indirect_subdivision);
+
+  // The solve: the steering sky, carrying the channels.
+  auto base = std::make_shared<rad::Daylight>();
+  base->sky.up = annual.up;
+  base->glazing = std::make_shared<rad::Glazing>(scene.glazing, scene.openings);
+  rad::Luminaire base_sky;
+  base_sky.kind = rad::Luminaire::Kind::sky;
+  base_sky.daylight = base;
+  const rad::Luminaire steering = rad::steering_sky(base_sky, co.steering_ground);
+  rad::RefineSettings refine;
+  rad::SolveOptions solve;
+  rad::SettingsRequest request;
+  {
+    rad::RefineSettings r;
+    rad::SolveOptions s;
+    request.patch_size = rad::apply_settings(mesh, request, r, s).patch_size * co.patch_factor;
+  }
+  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, solve);
+  solve.emission_scale = rad::kLumensPerWatt;
+  solve.min_reflectance = 1e-4;
+  make_patches(mesh, applied.patch_size);
+  ElementHierarchy hierarchy(mesh, refinement_for_patch_size(applied.patch_size));
+  rad::Solver solver(mesh, hierarchy, solve, refine, {steering});
+  const rad::Visibility visibility(mesh);
+  solver.carry_coefficients(rad::coefficient_channels(visibility, steering, indirect, year.suns, co));
+  spdlog::info("solve: {} patches (patch size {:.3g}), {} channels", hierarchy.patch_count(), applied.patch_size,
+               solver.coefficient_count());
+  const rad::SolveReport report = solver.run();
+  spdlog::info("solved in {:.1f} s: {} shots, {:.2g}% unshot", report.seconds, report.iterations,
+               100 * report.unshot_fraction);
+  const rad::Solver::Output result = solver.output();
+  const rad::LitScene lit =
+      rad::lit_scene(mesh, result.split, result.radiosity, {steering}, solve.emission_scale, true);
+
+  const rad::AnalysisHours occupied = rad::occupied_hours(year.rows, first_hour, last_hour);
+  const rad::AnalysisHours daylight_hours = rad::en17037_daylight_hours(year.diffuse_horizontal);
+  const double median_diffuse = rad::median_diffuse_illuminance(year.diffuse_horizontal, &daylight_hours);
+  nlohmann::json out;
+  out["weather"] = {{"file", weather.path},
+                    {"city", weather.site.city},
+                    {"country", weather.site.country},
+                    {"latitude", weather.site.latitude},
+                    {"longitude", weather.site.longitude},
+                    {"timezone", weather.site.timezone},
+                    {"elevation", weather.site.elevation},
+                    {"hours", weather.hours.size()}};
+  out["conventions"] = {
+      {"time", fmt::format("weather rows are hours ending at local standard time; each hour's sun at its middle "
+                           "((h-1):30 standard time, reference year {}); no daylight saving time",
+                           year.reference_year)},
+      {"sky", "Perez all-weather sky (1993) from each row's diffuse horizontal and direct normal irradiance; "
+              "illuminances from the Perez (1990) efficacy model; the file's illuminance fields are not used"},
+      {"ground_reflectance", annual.ground_reflectance},
+      {"occupied", occupied.description},
+      {"en17037_daylight_hours", daylight_hours.description},
+      {"median_diffuse_illuminance", median_diffuse},
+      {"coefficients",
+       fmt::format("direct sky on Reinhart MF:{} ({} patches), interreflection on MF:{} ({}), {} sun positions every "
+                   "{} degrees, one solve of {} patches",
+                   co.fine_subdivision, fine.size(), co.indirect_subdivision, indirect.size(), year.suns.size(),
+                   co.sun_spacing, hierarchy.patch_count())},
+      {"blinds", "none (LM-83's operable-blinds rule is not applied)"}};
+  for (const rad::GridSpec& spec : grids) {
+    rad::GridResult layout;
+    layout.spec = spec;
+    std::vector<std::array<long, 2>> cells;
+    const std::vector<Vec3d> points = rad::grid_points(spec, &layout.spacing, &cells, &layout.cells);
+    Vec3d normal(0.0);
+    normal[spec.up] = 1;
+    std::vector<rad::PointCoefficients> coefficients(points.size());
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+      coefficients[k] = rad::point_coefficients(lit, mesh, solver, steering, fine, indirect, points[k], normal, co,
+                                                0x6E1Dull + k);
+    });
+    const double coefficient_seconds = since();
+    const rad::AnnualGridHours hours =
+        rad::grid_year(coefficients, points, normal, *lit.visibility, base->glazing.get(), year);
+    spdlog::info("grid {}: coefficients of {} points in {:.1f} s, {} hours in {:.1f} s", spec.name, points.size(),
+                 coefficient_seconds, hours.total.hours, since());
+    // The metrics over the points that are not inside a solid.
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (!hours.masked[k]) kept.push_back(k);
+    if (kept.empty()) throw InputError(options.load.input, 0, "grid \"" + spec.name + "\" lies wholly inside solids.");
+    rad::HourlyIlluminance total(kept.size(), hours.total.hours), sun(kept.size(), hours.total.hours);
+    for (std::size_t h = 0; h < hours.total.hours; ++h)
+      for (std::size_t k = 0; k < kept.size(); ++k) {
+        total.at(h, k) = hours.total.at(h, kept[k]);
+        sun.at(h, k) = hours.sun.at(h, kept[k]);
+      }
+    rad::AnnualInputs inputs;
+    inputs.total = &total;
+    inputs.direct_sun = &sun;
+    inputs.occupied = &occupied;
+    inputs.daylight_hours = &daylight_hours;
+    std::vector<rad::PointMetrics> per_point;
+    const rad::GridMetrics m = rad::annual_metrics(inputs, {}, &per_point);
+    nlohmann::json g = {{"name", spec.name},
+                        {"points", kept.size()},
+                        {"masked", points.size() - kept.size()},
+                        {"sDA300_50", 100 * m.sda},
+                        {"ASE1000_250h", 100 * m.ase},
+                        {"DA300_mean", 100 * m.mean_da},
+                        {"cDA300_mean", 100 * m.mean_cda},
+                        {"UDI_below_100", 100 * m.mean_udi_low},
+                        {"UDI_100_3000", 100 * m.mean_udi_useful},
+                        {"UDI_above_3000", 100 * m.mean_udi_high},
+                        {"notes", m.notes}};
+    if (m.en17037) {
+      nlohmann::json levels = nlohmann::json::array();
+      for (const auto& l : m.en17037->levels)
+        levels.push_back({{"level", l.level},
+                          {"target_lux", l.target_lux},
+                          {"minimum_lux", l.minimum_lux},
+                          {"target_hours_percent", 100 * l.target_hours},
+                          {"minimum_hours_percent", 100 * l.minimum_hours},
+                          {"met", l.met()}});
+      g["EN17037"] = {{"daylight_hours", m.en17037->daylight_hours}, {"levels", levels}, {"achieved", m.en17037->achieved}};
+    }
+    out["grids"].push_back(g);
+    spdlog::info("grid {}: {} points: sDA300/50% {:.1f}%, ASE1000,250h {:.1f}%, UDI {:.0f}/{:.0f}/{:.0f}%, "
+                 "mean DA300 {:.0f}%, EN 17037: {}",
+                 spec.name, kept.size(), 100 * m.sda, 100 * m.ase, 100 * m.mean_udi_low, 100 * m.mean_udi_useful,
+                 100 * m.mean_udi_high, 100 * m.mean_da, m.en17037 ? m.en17037->achieved : "-");
+    // Outputs: the hourly file (every point, masked ones 0), the points, the plans.
+    write_npy(prefix + "_" + spec.name + "_hourly.npy", hours.total.lux, hours.total.hours, points.size());
+    {
+      AtomicFile csv(prefix + "_" + spec.name + "_points.csv", std::ios::out);
+      csv.stream() << "x,y,z,DA300,cDA300,UDI_below_100,UDI_100_3000,UDI_above_3000,hours_300lx,sDA_met,"
+                      "sun_hours_1000lx,ASE_exceeded\n";
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        const Vec3d& p = points[kept[i]];
+        const rad::PointMetrics& q = per_point[i];
+        csv.stream() << fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", p[0], p[1],
+                                    p[2], q.da, q.cda, q.udi_low, q.udi_useful, q.udi_high, q.sda_hours,
+                                    q.sda_met ? 1 : 0, q.ase_hours, q.ase_exceeded ? 1 : 0);
+      }
+      csv.commit();
+    }
+    auto plan = [&](const char* name, const std::string& unit, auto value) {
+      rad::GridResult r = layout;
+      r.points.resize(points.size());
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        r.points[k].position = points[k];
+        r.points[k].cell = cells[k];
+        r.points[k].masked = true;
+      }
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        rad::GridPointResult& p = r.points[kept[i]];
+        p.masked = false;
+        p.illuminance = value(per_point[i]);
+      }
+      static_cast<rad::PointStatistics&>(r) = rad::point_statistics(r.points);
+      write_png(prefix + "_" + spec.name + "_" + name + ".png", grid_picture(r, unit));
+    };
+    plan("DA300", "% hours >= 300 lx", [](const rad::PointMetrics& q) { return 100.0 * q.da; });
+    plan("cDA300", "% cDA300", [](const rad::PointMetrics& q) { return 100.0 * q.cda; });
+    plan("UDI", "% UDI 100-3000", [](const rad::PointMetrics& q) { return 100.0 * q.udi_useful; });
+    plan("ASE", "h sun > 1000 lx", [](const rad::PointMetrics& q) { return static_cast<double>(q.ase_hours); });
+  }
+  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  {
+    AtomicFile json(prefix + "_annual.json", std::ios::out);
+    json.stream() << out.dump(2) << "\n";
+    json.commit();
+  }
+  spdlog::info("wrote {}_annual.json and each grid's _hourly.npy, _points.csv and plans in {:.1f} s", prefix,
+               out["seconds"].get<double>());
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_annual_command(CLI::App& app) {
+  auto options = std::make_shared<AnnualCliOptions>();
+  CLI::App* command = app.add_subcommand(
+      "annual", "A year of daylight on the scene's grids from an EnergyPlus weather file: sDA, ASE, UDI, DA and "
+                "EN 17037's daylight provision, hourly illuminance per point, plans");
+  add_load_options(*command, options->load);
+  command->add_option("--weather", options->weather, "EnergyPlus weather file (.epw) of the site")->required();
+  command->add_option("-o,--output", options->output,
+                      "Prefix of the results: PREFIX_annual.json, PREFIX_GRID_hourly.npy, PREFIX_GRID_points.csv and "
+                      "plans (default: the scene's path without its extension)");
+  command->add_option("--occupied", options->occupied,
+                      "Occupied hours FIRST-LAST, local standard time, for sDA, ASE, UDI and DA")
+      ->capture_default_str();
+  return [options] { return run_annual(*options); };
+}
+
+}  // namespace dynrad::cli
