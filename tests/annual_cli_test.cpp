@@ -1,0 +1,134 @@
+// `dynrad annual` (plugin/cli/cmd_annual.cpp): a synthetic clear year on the daylit
+// room sample gives metrics that agree with its own files and with what the geometry
+// implies, and bad input is refused before any work, leaving no output.
+#include "synthetic_weather.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace dynrad {
+namespace {
+
+std::string sample(const std::string& name) { return std::string(DYNRAD_SAMPLES_DIR) + "/" + name; }
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
+  test::TempDir dir;
+  test::SyntheticYear clear;  // a site near London, every day clear
+  const test::TempWeatherFile weather(clear);
+  const auto run = test::run_dynrad("annual '" + sample("daylight_overcast.json") + "' --weather '" + weather.path() +
+                                    "' -o '" + dir.path("room") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto j = nlohmann::json::parse(read(dir.path("room_annual.json")));
+  ASSERT_EQ(j["grids"].size(), 1u);
+  const auto& g = j["grids"][0];
+  const std::size_t points = g["points"].get<std::size_t>() + g["masked"].get<std::size_t>();
+  EXPECT_EQ(points, 240u);  // 6 x 4 m less a 0.5 m border, every 0.25 m
+  EXPECT_EQ(j["weather"]["hours"].get<int>(), 8760);
+  // Every day clear, and a south window of 2.4 x 1.4 m: some points get direct sun over
+  // 1000 lx for more than 250 of the occupied hours, and most reach 300 lx for half of them.
+  EXPECT_GT(g["ASE1000_250h"].get<double>(), 5);
+  EXPECT_GT(g["sDA300_50"].get<double>(), 50);
+  const double udi = g["UDI_below_100"].get<double>() + g["UDI_100_3000"].get<double>() + g["UDI_above_3000"].get<double>();
+  EXPECT_NEAR(udi, 100, 1e-6);
+  EXPECT_EQ(g["EN17037"]["daylight_hours"].get<int>(), 4380);
+
+  // The hourly file: NumPy's format, (8760, 240) float32; dark at midnight, lit at noon
+  // in June everywhere, brightest near the south window (y = 0.625) at noon.
+  const std::string npy = read(dir.path("room_room_hourly.npy"));
+  ASSERT_GE(npy.size(), 10u);
+  EXPECT_EQ(npy.substr(0, 6), "\x93NUMPY");
+  const std::size_t header = 10 + (static_cast<unsigned char>(npy[8]) | static_cast<unsigned char>(npy[9]) << 8);
+  EXPECT_EQ(header % 64, 0u);
+  EXPECT_NE(npy.find("'shape': (8760, 240)"), std::string::npos);
+  ASSERT_EQ(npy.size(), header + 8760u * 240 * 4);
+  auto lux = [&](std::size_t row, std::size_t point) {
+    float v;
+    std::memcpy(&v, npy.data() + header + (row * 240 + point) * 4, 4);
+    return v;
+  };
+  const std::size_t june_noon = (31 + 28 + 31 + 30 + 31 + 20) * 24 + 12;  // 21 June, 12:00-13:00
+  double midnight = 0, noon_min = 1e30;
+  for (std::size_t k = 0; k < 240; ++k) {
+    midnight += lux(june_noon - 12, k);
+    noon_min = std::min<double>(noon_min, lux(june_noon, k));
+  }
+  EXPECT_EQ(midnight, 0);
+  EXPECT_GT(noon_min, 100);
+
+  // The points file: the mean of its DA column is the JSON's mean DA.
+  std::istringstream csv(read(dir.path("room_room_points.csv")));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(0, 12), "x,y,z,DA300,");
+  double sum = 0;
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string x, y, z, da;
+    std::getline(fields, x, ',');
+    std::getline(fields, y, ',');
+    std::getline(fields, z, ',');
+    std::getline(fields, da, ',');
+    sum += std::stod(da);
+    ++rows;
+  }
+  EXPECT_EQ(rows, g["points"].get<std::size_t>());
+  EXPECT_NEAR(100 * sum / static_cast<double>(rows), g["DA300_mean"].get<double>(), 0.01);
+  for (const char* plan : {"DA300", "cDA300", "UDI", "ASE"})
+    EXPECT_TRUE(std::filesystem::exists(dir.path(std::string("room_room_") + plan + ".png"))) << plan;
+}
+
+TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
+  test::TempDir dir;
+  test::SyntheticYear clear;
+  clear.days = 2;  // not a whole year: refused
+  const test::TempWeatherFile short_year(clear);
+  test::SyntheticYear whole;
+  const test::TempWeatherFile weather(whole);
+  const std::string room = "'" + sample("daylight_overcast.json") + "'";
+  const std::string out = " -o '" + dir.path("out") + "'";
+  struct Case {
+    std::string arguments, says;
+  };
+  dir.write("nogrid.json", "{\"meshes\": [{\"file\": \"" + sample("daylight_room.obj") + "\"}]}");
+  // A closed box: no glass, no opening.
+  dir.write("box.obj", "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0 0 2\nv 2 0 2\nv 2 2 2\nv 0 2 2\n"
+                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+  dir.write("nowindow.json", "{\"meshes\": [{\"file\": \"box.obj\"}], \"grids\": [{\"name\": \"floor\", "
+                             "\"rectangle\": [0.2, 0.2, 1.8, 1.8], \"height\": 0.8}]}");
+  const std::vector<Case> cases = {
+      {room + " --weather '" + weather.path() + "' --occupied 18-8" + out, "--occupied"},
+      {room + " --weather '" + weather.path() + "' --occupied 8" + out, "--occupied"},
+      {room + " --weather '" + short_year.path() + "'" + out, short_year.path()},
+      {room + " --weather '" + dir.path("missing.epw") + "'" + out, "missing.epw"},
+      {"'" + dir.path("nogrid.json") + "' --weather '" + weather.path() + "'" + out, "grids"},
+      {room + " --weather '" + weather.path() + "' -o '" + dir.path("no/such/dir/out") + "'", "no/such/dir"},
+  };
+  for (const Case& c : cases) {
+    const auto run = test::run_dynrad("annual " + c.arguments);
+    EXPECT_EQ(run.exit_code, 2) << c.arguments << "\n" << run.output;
+    EXPECT_NE(run.output.find(c.says), std::string::npos) << c.arguments << "\n" << run.output;
+  }
+  const auto no_window = test::run_dynrad("annual '" + dir.path("nowindow.json") + "' --weather '" + weather.path() + "'" + out);
+  EXPECT_EQ(no_window.exit_code, 2) << no_window.output;
+  EXPECT_NE(no_window.output.find("no windows"), std::string::npos) << no_window.output;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path("")))
+    EXPECT_EQ(entry.path().filename().string().rfind("out", 0), std::string::npos) << entry.path();
+}
+
+}  // namespace
+}  // namespace dynrad
