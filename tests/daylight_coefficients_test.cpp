@@ -182,14 +182,15 @@ struct Solved {
   rad::LitScene lit;
 };
 std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Luminaire> luminaires,
-                                   const std::function<rad::Solver::CoefficientChannels(const rad::Visibility&)>& channels) {
+                                   const std::function<rad::Solver::CoefficientChannels(const rad::Visibility&)>& channels,
+                                   double converge = 0.004) {
   auto out = std::make_unique<Solved>();
   out->scene = load_scene(obj);
   SceneMesh& mesh = *out->scene.mesh;
   rad::RefineSettings refine;
   rad::SolveOptions options;
   rad::SettingsRequest request;
-  request.converge = 0.004;
+  request.converge = converge;
   // The patch size of annual daylight (CoefficientOptions::patch_factor), for both.
   {
     rad::RefineSettings r;
@@ -211,6 +212,47 @@ std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Lumi
   const rad::Solver::Output result = out->solver->output();
   out->lit = rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.emission_scale, true);
   return out;
+}
+
+// The channels carry the steering sky's own light: weighted by its luminances (1 per sky
+// patch, its ground's for the ground, 0 for the suns), a point's coefficients give the
+// steering solve's own gather, direct and indirect, whatever the solve's accuracy (a
+// short solve: this runs sanitized too).
+TEST(DaylightCoefficients, TheSteeringSkyThroughItsChannelsIsItsOwnSolve) {
+  test::TempDir dir;
+  south_room(dir, R"({"type": "cie_overcast"})");
+  const std::string obj = dir.path("room.obj");
+  const LoadedScene room = load_scene(obj);
+  const auto scene_sky = rad::read_daylight(dir.path("room.json"), room.glazing, room.openings).back();
+  const rad::CoefficientOptions options;
+  const rad::Luminaire steering = rad::steering_sky(scene_sky, options.steering_ground);
+  const rad::SkyPatches fine(options.fine_subdivision), indirect(options.indirect_subdivision);
+  std::vector<rad::SunNodes> nodes;
+  const std::vector<Vec3d> suns =
+      rad::sun_positions(indirect, options.sun_spacing, {Vec3d(0.3, -0.7, 0.6).normalized()}, &nodes);
+  ASSERT_EQ(suns.size(), 4u);  // the corners of its cell
+  const auto solved = solve_room(
+      obj, {steering},
+      [&](const rad::Visibility& v) { return rad::coefficient_channels(v, steering, indirect, suns, options); }, 0.05);
+  EXPECT_EQ(solved->solver->coefficient_count(), indirect.size() + 1 + suns.size());
+  const rad::HourSky uniform = rad::hour_sky(steering.daylight->sky, Vec3d(0, 0, 1), 0, fine, indirect, {});
+  rad::GatherOptions gather;
+  gather.side = 16;
+  rad::CoefficientOptions at_points = options;
+  at_points.point_side = 16;
+  double sun_light = 0;
+  for (double y : {0.5, 2.5, 4.5})
+    for (double x : {0.5, 3.5}) {
+      const Vec3d p(x, y, 0.85), up(0, 0, 1);
+      const rad::PointCoefficients c = rad::point_coefficients(solved->lit, *solved->scene.mesh, *solved->solver,
+                                                               steering, fine, indirect, p, up, at_points, 7);
+      const rad::GridPointResult g = rad::gather_point(solved->lit, p, up, gather, 7);
+      const rad::HourIlluminance e = rad::hour_illuminance(c, uniform, 0);
+      EXPECT_NEAR(e.indirect / g.indirect, 1, 1e-4) << p;
+      EXPECT_NEAR(e.sky_direct / g.direct, 1, 0.01) << p;
+      for (std::size_t k = 0; k < suns.size(); ++k) sun_light += c.indirect[indirect.size() + 1 + k];
+    }
+  EXPECT_GT(sun_light, 0);  // the suns' light came in through the window and was carried
 }
 
 // The issue's test: the coefficients of one solve, for several hours (skies with and
