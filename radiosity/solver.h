@@ -231,10 +231,11 @@ class Solver {
   // (which patch shoots, where the mesh refines, when to stop) is steered by the colours,
   // whose sky is a sum of the channels' with positive weights, so that it holds every
   // channel's light. The sky's first shot splits a receiver's light into channels by
-  // `sky_mix` at the receiver's centre: for channel j, the light there per unit of
-  // channel j over the light of the steering sky, both direct (so that the channels'
-  // light sums to the steering sky's with the weights; channels that are no part of
-  // the steering sky, such as the sun's, go along with weight 0). Materials must be
+  // `sky_mix` over the receiver (climate/coefficient_solve.cpp samples a few points):
+  // for channel j, the light there per unit of channel j over the light of the
+  // steering sky, both direct (so that the channels' light sums to the steering sky's
+  // with the weights). Channels from CoefficientChannels::relative on are no share of
+  // the steering sky's light but light of their own (the suns'), taken once. Materials must be
   // grey, the only source one sky luminaire (throws std::invalid_argument otherwise).
   struct CoefficientChannels {
     std::size_t count = 0;

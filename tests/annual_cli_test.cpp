@@ -69,16 +69,19 @@ TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
   EXPECT_EQ(midnight, 0);
   EXPECT_GT(noon_min, 100);
 
-  // The points file: the mean of its DA column is the JSON's mean DA.
+  // The points file: each point's column in the hourly file, and the mean of its DA
+  // column is the JSON's mean DA.
   std::istringstream csv(read(dir.path("room_room_points.csv")));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line.substr(0, 12), "x,y,z,DA300,");
+  EXPECT_EQ(line.substr(0, 18), "point,x,y,z,DA300,");
   double sum = 0;
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     std::istringstream fields(line);
-    std::string x, y, z, da;
+    std::string index, x, y, z, da;
+    std::getline(fields, index, ',');
+    EXPECT_EQ(std::stoul(index), rows);  // no point of this room is masked: columns in order
     std::getline(fields, x, ',');
     std::getline(fields, y, ',');
     std::getline(fields, z, ',');
@@ -110,7 +113,14 @@ TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
   dir.write("nowindow.json", "{\"meshes\": [{\"file\": \"box.obj\"}], \"grids\": [{\"name\": \"floor\", "
                              "\"rectangle\": [0.2, 0.2, 1.8, 1.8], \"height\": 0.8}]}");
+  const std::string grid = R"(, "grids": [{"name": "g", "rectangle": [0.5, 0.5, 5.5, 3.5], "height": 0.85}])";
+  dir.write("north.json", "{\"meshes\": [{\"file\": \"" + sample("daylight_room.obj") + "\"}]" + grid +
+                              R"(, "sky": {"north": [0, 0]}})");
+  dir.write("ground.json", "{\"meshes\": [{\"file\": \"" + sample("daylight_room.obj") + "\"}]" + grid +
+                               R"(, "sky": {"ground_reflectance": 1.2}})");
   const std::vector<Case> cases = {
+      {"'" + dir.path("north.json") + "' --weather '" + weather.path() + "'" + out, "sky.north"},
+      {"'" + dir.path("ground.json") + "' --weather '" + weather.path() + "'" + out, "sky.ground_reflectance"},
       {room + " --weather '" + weather.path() + "' --occupied 18-8" + out, "--occupied"},
       {room + " --weather '" + weather.path() + "' --occupied 8" + out, "--occupied"},
       {room + " --weather '" + short_year.path() + "'" + out, short_year.path()},

@@ -34,6 +34,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 namespace dynrad::cli {
 namespace {
@@ -54,17 +55,28 @@ std::pair<int, int> parse_occupied(const std::string& text) {
   return {first, last};
 }
 
-// The scene file's "sky": its ground reflectance and north, when it has them.
+// The scene file's "sky": its ground reflectance and north, when it has them (the rest
+// of it, the hour's sky, is the weather's here).
 void scene_sky_settings(const std::string& scene, rad::AnnualOptions& options) {
   if (std::filesystem::path(scene).extension() != ".json") return;
   std::ifstream in(scene);
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (!j.is_object() || !j.contains("sky") || !j["sky"].is_object()) return;
   const auto& sky = j["sky"];
-  if (sky.contains("ground_reflectance") && sky["ground_reflectance"].is_number())
-    options.ground_reflectance = sky["ground_reflectance"].get<double>();
-  if (sky.contains("north") && sky["north"].is_array() && sky["north"].size() == 2)
-    options.north = Vec3d(sky["north"][0].get<double>(), sky["north"][1].get<double>(), 0).normalized();
+  if (sky.contains("ground_reflectance")) {
+    const auto& g = sky["ground_reflectance"];
+    if (!g.is_number() || !(g.get<double>() >= 0 && g.get<double>() < 1))
+      throw InputError(scene, 0, "sky.ground_reflectance must be a number from 0 to below 1.");
+    options.ground_reflectance = g.get<double>();
+  }
+  if (sky.contains("north")) {
+    const auto& n = sky["north"];
+    const bool numbers = n.is_array() && n.size() == 2 && n[0].is_number() && n[1].is_number();
+    const Vec3d north = numbers ? Vec3d(n[0].get<double>(), n[1].get<double>(), 0) : Vec3d(0.0);
+    if (!(north.norm() > 0) || !std::isfinite(north.norm()))
+      throw InputError(scene, 0, "sky.north must be [x, y], a direction in the plan that is not [0, 0].");
+    options.north = north.normalized();
+  }
 }
 
 // A little-endian float32 array of shape (rows, columns) in NumPy's .npy format 1.0.
@@ -92,6 +104,11 @@ int run_annual(const AnnualCliOptions& options) {
     throw InputError(options.load.input, 0,
                      "annual daylight is computed on calculation grids, and the scene has none: add \"grids\" (see "
                      "docs/lighting-design.md).");
+  for (const rad::GridSpec& g : grids)
+    if (g.up != 2)
+      throw InputError(options.load.input, 0,
+                       "grid \"" + g.name + "\" faces another way than up (+z): annual daylight takes work planes, "
+                       "horizontal, with +z up.");
   const std::string prefix =
       !options.output.empty() ? options.output
                               : (std::filesystem::path(options.load.input).parent_path() /
@@ -194,6 +211,7 @@ int run_annual(const AnnualCliOptions& options) {
       {"sky", "Perez all-weather sky (1993) from each row's diffuse horizontal and direct normal irradiance; "
               "illuminances from the Perez (1990) efficacy model; the file's illuminance fields are not used"},
       {"ground_reflectance", annual.ground_reflectance},
+      {"north", {annual.north[0], annual.north[1]}},
       {"occupied", occupied.description},
       {"en17037_daylight_hours", daylight_hours.description},
       {"median_diffuse_illuminance", median_diffuse},
@@ -203,6 +221,9 @@ int run_annual(const AnnualCliOptions& options) {
                    co.fine_subdivision, fine.size(), co.indirect_subdivision, indirect.size(), year.suns.size(),
                    co.sun_spacing, hierarchy.patch_count())},
       {"blinds", "none (LM-83's operable-blinds rule is not applied)"}};
+  // Every output is written at the end, once every grid has been computed: a grid that
+  // fails leaves nothing behind.
+  std::vector<std::function<void()>> writes;
   for (const rad::GridSpec& spec : grids) {
     rad::GridResult layout;
     layout.spec = spec;
@@ -216,7 +237,7 @@ int run_annual(const AnnualCliOptions& options) {
                                                 0x6E1Dull + k);
     });
     const double coefficient_seconds = since();
-    const rad::AnnualGridHours hours =
+    rad::AnnualGridHours hours =
         rad::grid_year(coefficients, points, normal, *lit.visibility, base->glazing.get(), year);
     spdlog::info("grid {}: coefficients of {} points in {:.1f} s, {} hours in {:.1f} s", spec.name, points.size(),
                  coefficient_seconds, hours.total.hours, since());
@@ -265,21 +286,25 @@ int run_annual(const AnnualCliOptions& options) {
                  "mean DA300 {:.0f}%, EN 17037: {}",
                  spec.name, kept.size(), 100 * m.sda, 100 * m.ase, 100 * m.mean_udi_low, 100 * m.mean_udi_useful,
                  100 * m.mean_udi_high, 100 * m.mean_da, m.en17037 ? m.en17037->achieved : "-");
-    // Outputs: the hourly file (every point, masked ones 0), the points, the plans.
-    write_npy(prefix + "_" + spec.name + "_hourly.npy", hours.total.lux, hours.total.hours, points.size());
-    {
-      AtomicFile csv(prefix + "_" + spec.name + "_points.csv", std::ios::out);
-      csv.stream() << "x,y,z,DA300,cDA300,UDI_below_100,UDI_100_3000,UDI_above_3000,hours_300lx,sDA_met,"
+    // Outputs: the hourly file (every point, masked ones 0), the points (with their column
+    // in the hourly file), the plans.
+    std::string csv = "point,x,y,z,DA300,cDA300,UDI_below_100,UDI_100_3000,UDI_above_3000,hours_300lx,sDA_met,"
                       "sun_hours_1000lx,ASE_exceeded\n";
-      for (std::size_t i = 0; i < kept.size(); ++i) {
-        const Vec3d& p = points[kept[i]];
-        const rad::PointMetrics& q = per_point[i];
-        csv.stream() << fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", p[0], p[1],
-                                    p[2], q.da, q.cda, q.udi_low, q.udi_useful, q.udi_high, q.sda_hours,
-                                    q.sda_met ? 1 : 0, q.ase_hours, q.ase_exceeded ? 1 : 0);
-      }
-      csv.commit();
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      const Vec3d& p = points[kept[i]];
+      const rad::PointMetrics& q = per_point[i];
+      csv += fmt::format("{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{}\n", kept[i], p[0], p[1],
+                         p[2], q.da, q.cda, q.udi_low, q.udi_useful, q.udi_high, q.sda_hours, q.sda_met ? 1 : 0,
+                         q.ase_hours, q.ase_exceeded ? 1 : 0);
     }
+    const std::string stem = prefix + "_" + spec.name;
+    writes.push_back([stem, lux = std::move(hours.total.lux), rows = hours.total.hours, columns = points.size(),
+                      csv = std::move(csv)] {
+      write_npy(stem + "_hourly.npy", lux, rows, columns);
+      AtomicFile file(stem + "_points.csv", std::ios::out);
+      file.stream() << csv;
+      file.commit();
+    });
     auto plan = [&](const char* name, const std::string& unit, auto value) {
       rad::GridResult r = layout;
       r.points.resize(points.size());
@@ -294,13 +319,14 @@ int run_annual(const AnnualCliOptions& options) {
         p.illuminance = value(per_point[i]);
       }
       static_cast<rad::PointStatistics&>(r) = rad::point_statistics(r.points);
-      write_png(prefix + "_" + spec.name + "_" + name + ".png", grid_picture(r, unit));
+      writes.push_back([path = stem + "_" + name + ".png", image = grid_picture(r, unit)] { write_png(path, image); });
     };
     plan("DA300", "% hours >= 300 lx", [](const rad::PointMetrics& q) { return 100.0 * q.da; });
     plan("cDA300", "% cDA300", [](const rad::PointMetrics& q) { return 100.0 * q.cda; });
     plan("UDI", "% UDI 100-3000", [](const rad::PointMetrics& q) { return 100.0 * q.udi_useful; });
     plan("ASE", "h sun > 1000 lx", [](const rad::PointMetrics& q) { return static_cast<double>(q.ase_hours); });
   }
+  for (const auto& write : writes) write();
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   {
     AtomicFile json(prefix + "_annual.json", std::ios::out);
