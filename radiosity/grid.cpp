@@ -99,20 +99,23 @@ std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used, std::
   return out;
 }
 
-GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Vec3d& normal,
-                             const GatherOptions& options, std::uint64_t point_seed) {
-  const Visibility& vis = *scene.visibility;
-  GridPointResult out;
-  out.position = point;
-  // Inside a solid: most of six axis rays meet the backs of faces.
+bool inside_solid(const Visibility& visibility, const Vec3d& point) {
   int backs = 0;
   for (int axis = 0; axis < 3; ++axis)
     for (double sign : {-1.0, 1.0}) {
       Vec3d d(0.0);
       d[axis] = sign;
-      backs += vis.trace(point, d, d) == Visibility::Hit::back;
+      backs += visibility.trace(point, d, d) == Visibility::Hit::back;
     }
-  if (backs >= 4) {
+  return backs >= 4;
+}
+
+GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Vec3d& normal,
+                             const GatherOptions& options, std::uint64_t point_seed) {
+  const Visibility& vis = *scene.visibility;
+  GridPointResult out;
+  out.position = point;
+  if (inside_solid(vis, point)) {
     out.masked = true;
     return out;
   }

@@ -89,6 +89,10 @@ struct GridCells {
 std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr,
                                std::vector<std::array<long, 2>>* cells = nullptr, GridCells* layout = nullptr);
 
+// Whether `point` lies inside a solid: most of six rays along the axes meet the backs of
+// faces (grid points there are masked).
+bool inside_solid(const Visibility& visibility, const Vec3d& point);
+
 struct GatherOptions {
   // Indirect rays per point: side x side strata of the cosine-weighted hemisphere.
   // 48 x 48 = 2304 gives about 0.5% noise (one standard deviation) on the indirect

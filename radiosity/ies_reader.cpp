@@ -23,6 +23,7 @@
 // belongs to the format. TILT=<file name> (tilt data in a separate file) is refused:
 // the file would depend on another that is usually lost on the way.
 #include "mesh/error.h"
+#include "mesh/text_lines.h"
 #include "radiosity/photometry.h"
 #include "radiosity/photometry_parse.h"
 
@@ -77,11 +78,7 @@ class IesParser {
 
   // The next line of the text, without its line break; false at the end.
   bool next_line(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    const std::size_t end = text_.find_first_of("\r\n", pos_);
-    line = text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_);
-    pos_ = end == std::string_view::npos ? text_.size() : end + 1;
-    if (end != std::string_view::npos && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
+    if (!next_text_line(text_, pos_, line)) return false;
     ++line_;
     return true;
   }

@@ -143,14 +143,7 @@ PointCoefficients point_coefficients(const LitScene& lit, const SceneMesh& mesh,
                                      std::uint64_t seed) {
   const Visibility& vis = *lit.visibility;
   PointCoefficients out;
-  int backs = 0;  // inside a solid: most of six axis rays meet the backs of faces (as gather_point)
-  for (int axis = 0; axis < 3; ++axis)
-    for (double sign : {-1.0, 1.0}) {
-      Vec3d d(0.0);
-      d[axis] = sign;
-      backs += vis.trace(point, d, d) == Visibility::Hit::back;
-    }
-  if (backs >= 4) {
+  if (inside_solid(vis, point)) {
     out.masked = true;
     return out;
   }

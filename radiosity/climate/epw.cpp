@@ -3,6 +3,7 @@
 
 #include "mesh/error.h"
 #include "mesh/io_util.h"
+#include "mesh/text_lines.h"
 
 #include <algorithm>
 #include <array>
@@ -146,11 +147,7 @@ class EpwParser {
 
   // The next line without its line break ("\n", "\r\n" or "\r"); false at the end.
   bool next_line(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    const std::size_t end = text_.find_first_of("\r\n", pos_);
-    line = text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_);
-    pos_ = end == std::string_view::npos ? text_.size() : end + 1;
-    if (end != std::string_view::npos && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
+    if (!next_text_line(text_, pos_, line)) return false;
     ++line_;
     return true;
   }
