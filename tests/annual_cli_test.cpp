@@ -95,6 +95,24 @@ TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
     EXPECT_TRUE(std::filesystem::exists(dir.path(std::string("room_room_") + plan + ".png"))) << plan;
 }
 
+// A stop during the solve (SIGTERM) still gives the year, from the light shot so far,
+// said so in the report, with exit code 3.
+TEST(AnnualCli, AStoppedSolveStillGivesTheYearFromTheLightSoFar) {
+  test::TempDir dir;
+  test::SyntheticYear clear;
+  const test::TempWeatherFile weather(clear);
+  const auto run = test::run_dynrad_and_signal("annual '" + sample("daylight_overcast.json") + "' --weather '" +
+                                                   weather.path() + "' -o '" + dir.path("room") + "'",
+                                               2.0, "TERM", " channels");
+  ASSERT_NE(run.output.find("exit=3"), std::string::npos) << run.output;
+  const auto j = nlohmann::json::parse(read(dir.path("room_annual.json")));
+  EXPECT_TRUE(j["interrupted"].get<bool>());
+  EXPECT_EQ(j["solve"]["stopped_by"].get<std::string>(), "interrupted");
+  EXPECT_GT(j["solve"]["unshot_percent"].get<double>(), 1);
+  EXPECT_TRUE(std::filesystem::exists(dir.path("room_room_hourly.npy")));
+  EXPECT_GT(j["grids"][0]["DA300_mean"].get<double>(), 0);
+}
+
 TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
   test::TempDir dir;
   test::SyntheticYear clear;

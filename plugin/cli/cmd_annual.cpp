@@ -19,6 +19,7 @@
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_picture.h"
 #include "plugin/cli/png.h"
+#include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
 #include "radiosity/daylight.h"
 #include "radiosity/grid_scene.h"
@@ -180,12 +181,31 @@ int run_annual(const AnnualCliOptions& options) {
   solve.min_reflectance = 1e-4;
   make_patches(mesh, applied.patch_size);
   ElementHierarchy hierarchy(mesh, refinement_for_patch_size(applied.patch_size));
+  // Progress as solve shows it; a first SIGINT or SIGTERM stops the solve at the next
+  // shot, and the year is then computed from the light shot so far (exit code 3).
+  Progress progress(solve.error_target > 0 ? solve.error_target : solve.converge);
+  solve.should_stop = [] { return g_stop_requested.load(); };
+  rad::Solver* running = nullptr;
+  solve.on_shot = [&](std::size_t shot, double unshot) {
+    progress.update(shot, unshot, -1, running ? running->report().elements : 0);
+  };
+  solve.on_busy = [&](std::size_t points, double seconds) { progress.busy(points, seconds, g_stop_requested.load()); };
+  g_stop_requested = false;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
   rad::Solver solver(mesh, hierarchy, solve, refine, {steering});
+  running = &solver;
   const rad::Visibility visibility(mesh);
   solver.carry_coefficients(rad::coefficient_channels(visibility, steering, indirect, year.suns, co));
   spdlog::info("solve: {} patches (patch size {:.3g}), {} channels", hierarchy.patch_count(), applied.patch_size,
                solver.coefficient_count());
   const rad::SolveReport report = solver.run();
+  progress.finish();
+  const bool interrupted = g_stop_requested.load();
+  if (interrupted)
+    spdlog::warn("interrupted: the year is computed from the light shot so far ({:.2g}% unshot); a second signal "
+                 "ends at once",
+                 100 * report.unshot_fraction);
   spdlog::info("solved in {:.1f} s: {} shots, {:.2g}% unshot", report.seconds, report.iterations,
                100 * report.unshot_fraction);
   const rad::Solver::Output result = solver.output();
@@ -328,6 +348,12 @@ int run_annual(const AnnualCliOptions& options) {
   }
   for (const auto& write : writes) write();
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  out["solve"] = {{"patches", hierarchy.patch_count()},
+                  {"channels", solver.coefficient_count()},
+                  {"shots", report.iterations},
+                  {"unshot_percent", 100 * report.unshot_fraction},
+                  {"stopped_by", report.stopped_by}};
+  if (interrupted) out["interrupted"] = true;
   {
     AtomicFile json(prefix + "_annual.json", std::ios::out);
     json.stream() << out.dump(2) << "\n";
@@ -335,7 +361,9 @@ int run_annual(const AnnualCliOptions& options) {
   }
   spdlog::info("wrote {}_annual.json and each grid's _hourly.npy, _points.csv and plans in {:.1f} s", prefix,
                out["seconds"].get<double>());
-  return kExitOk;
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  return interrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace
