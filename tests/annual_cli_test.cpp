@@ -4,6 +4,7 @@
 #include "synthetic_weather.h"
 #include "test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -93,6 +94,15 @@ TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
   EXPECT_NEAR(100 * sum / static_cast<double>(rows), g["DA300_mean"].get<double>(), 0.01);
   for (const char* plan : {"DA300", "cDA300", "UDI", "ASE"})
     EXPECT_TRUE(std::filesystem::exists(dir.path(std::string("room_room_") + plan + ".png"))) << plan;
+  // The HTML report: the figures of the JSON, EN 17037's table and the four plans embedded.
+  const std::string html = read(dir.path("room_annual.html"));
+  EXPECT_NE(html.find(fmt::format("{:.1f}%", g["sDA300_50"].get<double>())), std::string::npos);
+  EXPECT_NE(html.find("level achieved <strong>" + g["EN17037"]["achieved"].get<std::string>()), std::string::npos);
+  std::size_t images = 0;
+  for (std::size_t at = html.find("data:image/png;base64,"); at != std::string::npos;
+       at = html.find("data:image/png;base64,", at + 1))
+    ++images;
+  EXPECT_EQ(images, 4u);
 }
 
 // A stop during the solve (SIGTERM) still gives the year, from the light shot so far,

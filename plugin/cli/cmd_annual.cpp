@@ -5,6 +5,7 @@
 //
 // Writes, beside PREFIX:
 //   PREFIX_annual.json           the site, the conventions, every grid's metrics
+//   PREFIX_annual.html           the same as a report, with the plans (html_annual.h)
 //   PREFIX_NAME_hourly.npy       per grid, the illuminance (lx, float32) per weather row
 //                                and point, shape (rows, points): numpy.load() reads it
 //   PREFIX_NAME_points.csv       per point: position, DA, cDA, UDI, sDA and ASE hours
@@ -18,6 +19,7 @@
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_picture.h"
+#include "plugin/cli/html_annual.h"
 #include "plugin/cli/png.h"
 #include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
@@ -115,6 +117,7 @@ int run_annual(const AnnualCliOptions& options) {
                               : (std::filesystem::path(options.load.input).parent_path() /
                                  std::filesystem::path(options.load.input).stem()).string();
   check_output_writable(prefix + "_annual.json");
+  check_output_writable(prefix + "_annual.html");
   for (const rad::GridSpec& g : grids)
     for (const char* suffix : {"_hourly.npy", "_points.csv", "_DA300.png", "_cDA300.png", "_UDI.png", "_ASE.png"})
       check_output_writable(prefix + "_" + g.name + suffix);
@@ -244,6 +247,7 @@ int run_annual(const AnnualCliOptions& options) {
   // Every output is written at the end, once every grid has been computed: a grid that
   // fails leaves nothing behind.
   std::vector<std::function<void()>> writes;
+  std::vector<std::vector<std::pair<std::string, std::string>>> plans;  // per grid: caption, PNG
   for (const rad::GridSpec& spec : grids) {
     rad::GridResult layout;
     layout.spec = spec;
@@ -325,6 +329,7 @@ int run_annual(const AnnualCliOptions& options) {
       file.stream() << csv;
       file.commit();
     });
+    plans.emplace_back();
     auto plan = [&](const char* name, const std::string& unit, auto value) {
       rad::GridResult r = layout;
       r.points.resize(points.size());
@@ -339,7 +344,13 @@ int run_annual(const AnnualCliOptions& options) {
         p.illuminance = value(per_point[i]);
       }
       static_cast<rad::PointStatistics&>(r) = rad::point_statistics(r.points);
-      writes.push_back([path = stem + "_" + name + ".png", image = grid_picture(r, unit)] { write_png(path, image); });
+      std::string png = encode_png(grid_picture(r, unit));
+      plans.back().emplace_back(std::string(name) + ": " + unit, png);
+      writes.push_back([path = stem + "_" + name + ".png", png = std::move(png)] {
+        AtomicFile file(path);
+        file.stream() << png;
+        file.commit();
+      });
     };
     plan("DA300", "% hours >= 300 lx", [](const rad::PointMetrics& q) { return 100.0 * q.da; });
     plan("cDA300", "% cDA300", [](const rad::PointMetrics& q) { return 100.0 * q.cda; });
@@ -359,7 +370,8 @@ int run_annual(const AnnualCliOptions& options) {
     json.stream() << out.dump(2) << "\n";
     json.commit();
   }
-  spdlog::info("wrote {}_annual.json and each grid's _hourly.npy, _points.csv and plans in {:.1f} s", prefix,
+  write_annual_html(prefix + "_annual.html", out, plans);
+  spdlog::info("wrote {}_annual.json, .html and each grid's _hourly.npy, _points.csv and plans in {:.1f} s", prefix,
                out["seconds"].get<double>());
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
