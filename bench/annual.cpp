@@ -9,9 +9,15 @@
 // coefficient channels' memory: patches x channels x 8 bytes (each patch's unshot and
 // received light per channel, floats). Last lines: ratios annual over one solve.
 //
-// Usage: bench_annual [repeats (3)]
+// With --house, also the IFC house's ground floor once (issue 30's goal: at most 10
+// minutes and 2 GB): the model and grid "ground" of samples/fzk_house_lamps.json, its
+// glazing as windows, without the lamps, the same synthetic year.
+//
+// Usage: bench_annual [repeats (3)] [--house]
 #include "bench/child.h"
 #include "bench/median.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -22,7 +28,14 @@
 
 int main(int argc, char** argv) {
   using namespace dynrad;
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  int repeats = 3;
+  bool house = false;
+  for (int a = 1; a < argc; ++a) {
+    if (std::string(argv[a]) == "--house")
+      house = true;
+    else
+      repeats = std::max(1, std::atoi(argv[a]));
+  }
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("dynrad-bench-annual-" + std::to_string(getpid()));
   fs::create_directories(dir);
@@ -52,6 +65,22 @@ int main(int argc, char** argv) {
       mib[k].push_back(run.peak_mib);
       if (k == 0) annual_log = run.output;
     }
+  bench::ChildRun house_run;
+  std::string house_log;
+  if (house) {
+    nlohmann::json lamps = nlohmann::json::parse(std::ifstream(samples + "/fzk_house_lamps.json"));
+    nlohmann::json scene_house = {{"meshes", lamps["meshes"]},
+                                  {"grids", lamps["grids"]},
+                                  {"sky", {{"type", "cie_overcast"}, {"ground_reflectance", 0.2}}}};
+    const std::string path = (dir / "house.json").string();
+    std::ofstream(path) << scene_house.dump();
+    house_run = bench::run_child({DYNRAD_CLI, "annual", path, "--weather", weather, "-o", (dir / "house").string()},
+                                 (dir / "house_log.txt").string());
+    if (house_run.exit_code != 0) {
+      std::fprintf(stderr, "dynrad annual (house) failed (%d):\n%s\n", house_run.exit_code, house_run.output.c_str());
+      return 1;
+    }
+  }
   fs::remove_all(dir);
   // The last annual run's phases and channels, from its log.
   auto find = [&](const char* pattern) {
@@ -72,5 +101,14 @@ int main(int argc, char** argv) {
   std::printf("ratio command seconds (annual / one solve): %.2f (medians of %d)\n",
               bench::median(seconds[0]) / bench::median(seconds[1]), repeats);
   std::printf("ratio peak memory (annual / one solve): %.2f\n", bench::median(mib[0]) / bench::median(mib[1]));
+  if (house) {
+    annual_log = house_run.output;
+    std::printf("IFC house ground floor, one run: %.1f s (goal 600), peak %.0f MiB (goal 2048); solve %s s, %s patches "
+                "x %s channels, %s grid points\n",
+                house_run.seconds, house_run.peak_mib, find(R"(solved in ([0-9.]+) s)").c_str(),
+                find(R"(solve: ([0-9]+) patches)").c_str(),
+                find(R"(patches \(patch size [0-9.]+\), ([0-9]+) channels)").c_str(),
+                find(R"(coefficients of ([0-9]+) points)").c_str());
+  }
   return 0;
 }
