@@ -33,14 +33,30 @@ void frame(const Vec3d& n, Vec3d& t, Vec3d& b) {
   b = OpenMesh::cross(n, t);
 }
 
-// The solved radiosity where a ray met a face, interpolated from its corners.
+}  // namespace
+
 Rgb radiosity_at(const LitScene& scene, const Visibility::Intersection& hit) {
   const auto& tri = scene.triangles[static_cast<std::size_t>(hit.face)];
   return scene.radiosity[tri[0]] * (1 - hit.u - hit.v) + scene.radiosity[tri[1]] * hit.u +
          scene.radiosity[tri[2]] * hit.v;
 }
 
-}  // namespace
+int gather_rays(const LitScene& scene, const Vec3d& point, const Vec3d& normal, int side, std::uint64_t& state,
+                const std::function<void(const Visibility::Intersection&)>& on_hit) {
+  Vec3d t, bt;
+  frame(normal, t, bt);
+  side = std::max(1, side);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const double u1 = (i + uniform(state)) / side, u2 = (j + uniform(state)) / side;
+      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+      const Vec3d dir = t * (r * std::cos(phi)) + bt * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - u1));
+      // (from a hair above the point: a grid on a surface must not see that surface)
+      const Visibility::Intersection hit = scene.visibility->intersect(point + normal * (1e-7 * scene.diagonal), dir);
+      if (hit.hit && hit.front) on_hit(hit);
+    }
+  return side * side;
+}
 
 double polygon_edge_distance(const std::vector<std::array<double, 2>>& polygon, double x, double y) {
   return edge_distance(polygon, x, y);
@@ -155,20 +171,10 @@ GridPointResult gather_point(const LitScene& scene, const Vec3d& point, const Ve
     direct += m * (ff * vis.visible_count(point, normal, targets, n, front) / n);
   }
   // Indirect: B - emission where cosine-weighted rays first land, stratified.
-  Vec3d t, bt;
-  frame(normal, t, bt);
-  const int side = std::max(1, options.side);
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j) {
-      const double u1 = (i + uniform(state)) / side, u2 = (j + uniform(state)) / side;
-      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-      const Vec3d dir = t * (r * std::cos(phi)) + bt * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - u1));
-      // (from a hair above the point: a grid on a surface must not see that surface)
-      const Visibility::Intersection hit = vis.intersect(point + normal * (1e-7 * scene.diagonal), dir);
-      if (!hit.hit || !hit.front) continue;
-      indirect += radiosity_at(scene, hit) - scene.emission[static_cast<std::size_t>(hit.face)];
-    }
-  indirect = indirect * (1.0 / (static_cast<double>(side) * side));
+  const int rays = gather_rays(scene, point, normal, options.side, state, [&](const Visibility::Intersection& hit) {
+    indirect += radiosity_at(scene, hit) - scene.emission[static_cast<std::size_t>(hit.face)];
+  });
+  indirect = indirect * (1.0 / rays);
   out.direct = direct.luminance();
   out.indirect = indirect.luminance();
   out.colour = direct + indirect;

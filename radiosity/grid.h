@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,6 +89,15 @@ struct GridCells {
 // (i, j) and `layout` the cells.
 std::vector<Vec3d> grid_points(const GridSpec& spec, double* spacing_used = nullptr,
                                std::vector<std::array<long, 2>>* cells = nullptr, GridCells* layout = nullptr);
+
+// The solved radiosity where a ray met a face, interpolated from its corners.
+Rgb radiosity_at(const LitScene& scene, const Visibility::Intersection& hit);
+
+// The indirect part of a gather: side x side stratified cosine-weighted rays about
+// `normal` from a hair above `point` (jittered from `state`); `on_hit` receives each that
+// lands on a front face. Returns the number of rays cast (the divisor of the mean).
+int gather_rays(const LitScene& scene, const Vec3d& point, const Vec3d& normal, int side, std::uint64_t& state,
+                const std::function<void(const Visibility::Intersection&)>& on_hit);
 
 // Whether `point` lies inside a solid: most of six rays along the axes meet the backs of
 // faces (grid points there are masked).

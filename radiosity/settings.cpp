@@ -4,6 +4,8 @@
 #include "mesh/refinement.h"
 #include "radiosity/solver.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -78,12 +80,14 @@ AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& re
     out.patch_size = request.patch_size;
     out.patch_size_rule = "given";
   } else if (dynamic) {
-    out.patch_size = c.patch_size;
+    out.patch_size = c.patch_size * request.patch_scale;
     out.patch_size_rule = c.patch_size_rule;
   } else {
-    out.patch_size = default_patch_size(scene);
+    out.patch_size = default_patch_size(scene) * request.patch_scale;
     out.patch_size_rule = "a tenth of the diagonal";
   }
+  if (request.patch_size <= 0 && request.patch_scale != 1)
+    out.patch_size_rule += fmt::format(", times {:.3g}", request.patch_scale);
   refine.max_level = request.max_level >= 0 ? request.max_level : dynamic ? c.preset.max_level : 3;
   // A level given is the level every patch's shot refines to, as in the paper's
   // comparisons of adaptive and dynamic subdivision at one level (luminaires, which the

@@ -56,6 +56,7 @@ ChosenSettings choose_settings(const SceneMesh& scene, Quality quality);
 struct SettingsRequest {
   Quality quality = Quality::normal;
   double patch_size = 0;
+  double patch_scale = 1;  // a chosen patch size times this (annual daylight: CoefficientOptions::patch_factor)
   int max_level = -1;
   double converge = -1;  // given: stop by unshot power instead of by the error target
   double pushdown = -1, pushdown_floor = -1;

@@ -234,9 +234,9 @@ class Solver {
   // `sky_mix` over the receiver (climate/coefficient_solve.cpp samples a few points):
   // for channel j, the light there per unit of channel j over the light of the
   // steering sky, both direct (so that the channels' light sums to the steering sky's
-  // with the weights). Channels from CoefficientChannels::relative on are no share of
-  // the steering sky's light but light of their own (the suns'), taken once. Materials must be
-  // grey, the only source one sky luminaire (throws std::invalid_argument otherwise).
+  // with the weights; CoefficientChannels::relative tells the channels that are light of
+  // their own instead). Materials must be grey, the only source one sky luminaire
+  // (throws std::invalid_argument otherwise).
   struct CoefficientChannels {
     std::size_t count = 0;
     // Channels from `relative` on (when below count) are not shares of the steering
@@ -262,6 +262,7 @@ class Solver {
   std::vector<float> coefficient_shot_;         // the current sender's shot (as current_shot_)
   std::vector<float> coefficient_mix_;          // the sky's shot: per receiver in coefficient_slot_
   std::vector<std::uint32_t> coefficient_slot_;  // per patch, then per part: its mix's slot (or ~0)
+  std::vector<char> coefficient_booked_;         // per slot: its absolute channels taken
   // A patch sender: `factor` of its unshot channels into the shot (adding `weight` x
   // that), 1 - factor left.
   void shoot_coefficients(std::uint32_t p, double factor, double weight);
@@ -270,9 +271,8 @@ class Solver {
   // What a receiver of the sky's shot takes per unit area: channel j of the mix at
   // `slot` times `factor` (the steering sky's light there), to `out`.
   // The absolute channels (CoefficientChannels::relative) are taken at the first
-  // booking of a slot only; `booked` marks it.
+  // booking of a slot only (coefficient_booked_).
   void incident_coefficients(std::uint32_t slot, double factor, float* out);
-  std::vector<char> coefficient_booked_;  // per slot of the sky's shot
   // Books a patch's reception (see account_transfers): `incident` times `factor` per
   // unit area.
   void book_coefficients(std::uint32_t patch, const float* incident, float factor);

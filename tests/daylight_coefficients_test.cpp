@@ -191,12 +191,7 @@ std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Lumi
   rad::SolveOptions options;
   rad::SettingsRequest request;
   request.converge = converge;
-  // The patch size of annual daylight (CoefficientOptions::patch_factor), for both.
-  {
-    rad::RefineSettings r;
-    rad::SolveOptions o;
-    request.patch_size = rad::apply_settings(mesh, request, r, o).patch_size * rad::CoefficientOptions{}.patch_factor;
-  }
+  request.patch_scale = rad::CoefficientOptions{}.patch_factor;  // annual daylight's patch size, for both
   const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options);
   options.emission_scale = rad::kLumensPerWatt;
   options.min_reflectance = 1e-4;
@@ -225,7 +220,7 @@ TEST(DaylightCoefficients, TheSteeringSkyThroughItsChannelsIsItsOwnSolve) {
   const LoadedScene room = load_scene(obj);
   const auto scene_sky = rad::read_daylight(dir.path("room.json"), room.glazing, room.openings).back();
   const rad::CoefficientOptions options;
-  const rad::Luminaire steering = rad::steering_sky(scene_sky, options.steering_ground);
+  const rad::Luminaire steering = rad::steering_sky(scene_sky.daylight->glazing, Vec3d(0, 0, 1), options.steering_ground);
   const rad::SkyPatches fine(options.fine_subdivision), indirect(options.indirect_subdivision);
   std::vector<rad::SunNodes> nodes;
   const std::vector<Vec3d> suns =
@@ -272,7 +267,7 @@ TEST(DaylightCoefficients, OneSolvesCoefficientsGiveEachHoursOwnSolve) {
   const LoadedScene room = load_scene(obj);
   const auto scene_sky = rad::read_daylight(dir.path("room.json"), room.glazing, room.openings).back();
   const rad::CoefficientOptions options;
-  const rad::Luminaire steering = rad::steering_sky(scene_sky, options.steering_ground);
+  const rad::Luminaire steering = rad::steering_sky(scene_sky.daylight->glazing, Vec3d(0, 0, 1), options.steering_ground);
   const rad::SkyPatches fine(options.fine_subdivision), indirect(options.indirect_subdivision);
   // The sun positions of the hours.
   std::vector<Vec3d> hour_suns;

@@ -164,21 +164,12 @@ int run_annual(const AnnualCliOptions& options) {
                co.indirect_subdivision);
 
   // The solve: the steering sky, carrying the channels.
-  auto base = std::make_shared<rad::Daylight>();
-  base->sky.up = annual.up;
-  base->glazing = std::make_shared<rad::Glazing>(scene.glazing, scene.openings);
-  rad::Luminaire base_sky;
-  base_sky.kind = rad::Luminaire::Kind::sky;
-  base_sky.daylight = base;
-  const rad::Luminaire steering = rad::steering_sky(base_sky, co.steering_ground);
+  const auto glazing = std::make_shared<const rad::Glazing>(scene.glazing, scene.openings);
+  const rad::Luminaire steering = rad::steering_sky(glazing, annual.up, co.steering_ground);
   rad::RefineSettings refine;
   rad::SolveOptions solve;
   rad::SettingsRequest request;
-  {
-    rad::RefineSettings r;
-    rad::SolveOptions s;
-    request.patch_size = rad::apply_settings(mesh, request, r, s).patch_size * co.patch_factor;
-  }
+  request.patch_scale = co.patch_factor;
   const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, solve);
   solve.emission_scale = rad::kLumensPerWatt;
   solve.min_reflectance = 1e-4;
@@ -262,7 +253,7 @@ int run_annual(const AnnualCliOptions& options) {
     });
     const double coefficient_seconds = since();
     rad::AnnualGridHours hours =
-        rad::grid_year(coefficients, points, normal, *lit.visibility, base->glazing.get(), year);
+        rad::grid_year(coefficients, points, normal, *lit.visibility, glazing.get(), year);
     spdlog::info("grid {}: coefficients of {} points in {:.1f} s, {} hours in {:.1f} s", spec.name, points.size(),
                  coefficient_seconds, hours.total.hours, since());
     // The metrics over the points that are not inside a solid.

@@ -46,7 +46,6 @@ YearSky year_sky(const Weather& weather, const SkyPatches& fine, const SkyPatche
   year.hours.resize(n);
   year.dark.assign(n, 1);
   year.diffuse_horizontal.assign(n, 0.0);
-  year.global_horizontal.assign(n, 0.0);
   std::vector<std::string> errors(n);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t r) {
     const WeatherHour& h = weather.hours[r];
@@ -67,7 +66,6 @@ YearSky year_sky(const Weather& weather, const SkyPatches& fine, const SkyPatche
                                up ? nodes[r] : SunNodes{});
       year.dark[r] = 0;
       year.diffuse_horizontal[r] = lux.diffuse_horizontal;
-      year.global_horizontal[r] = lux.diffuse_horizontal + sun_horizontal;
     } catch (const std::invalid_argument& e) {
       errors[r] = e.what();
     }

@@ -37,7 +37,6 @@ struct YearSky {
   std::vector<HourSky> hours;              // per row (dark rows: empty vectors)
   std::vector<char> dark;                  // per row
   std::vector<double> diffuse_horizontal;  // lx per row, the sky's (EN 17037's daylight hours)
-  std::vector<double> global_horizontal;   // lx per row, sky and sun
   std::vector<Vec3d> suns;                 // the sun positions (coefficient_solve.h)
   int reference_year = 2019;
 };

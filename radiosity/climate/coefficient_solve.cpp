@@ -13,15 +13,26 @@
 
 namespace dynrad::rad {
 
-Luminaire steering_sky(const Luminaire& scene_sky, double ground_luminance) {
+namespace {
+
+// The steering sky's light from per-channel values (the sky's channels at luminance 1,
+// the ground's at `ground`; the suns' after them are no part of it).
+template <typename T>
+double steering_light(const T* values, std::size_t sky_count, double ground) {
+  double sum = 0;
+  for (std::size_t j = 0; j + 1 < sky_count; ++j) sum += values[j];
+  return sum + ground * values[sky_count - 1];
+}
+
+}  // namespace
+
+Luminaire steering_sky(std::shared_ptr<const Glazing> glazing, const Vec3d& up, double ground_luminance) {
   auto day = std::make_shared<Daylight>();
-  const Daylight& from = *scene_sky.daylight;
   day->sky.type = SkyModel::Type::uniform;
-  day->sky.up = from.sky.up;
+  day->sky.up = up;
   day->sky.zenith_luminance = 1;
   day->sky.ground_luminance = ground_luminance;
-  day->glazing = from.glazing;
-  day->side = from.side;
+  day->glazing = std::move(glazing);
   day->horizontal_sky = M_PI;
   day->sky_summary = "the steering sky of daylight coefficients: uniform, luminance 1, the ground " +
                      std::to_string(ground_luminance);
@@ -105,32 +116,23 @@ Solver::CoefficientChannels coefficient_channels(const Visibility& visibility, c
     // The sky: binned at the centre and halfway to each corner (the mean of the four).
     std::vector<double> bins(sky_count, 0.0);
     const SkyDirectionSink sink = [&](const Vec3d& d, double weight) { bins[indirect.index(d)] += weight; };
-    int points = 0;
-    for (int k = point ? 3 : 0; k < 4; ++k, ++points) {
+    for (int k = point ? 3 : 0; k < 4; ++k) {
       const Vec3d x = k == 3 ? centre : (centre + surface[static_cast<std::size_t>(k)]) / 2.0;
       daylight_illuminance(&visibility, steering, x, n, nullptr, options.mix_side, nullptr, &sink);
     }
-    // The steering sky's light is the bins weighted by its luminances (1 above, `ground` below).
-    double steering_light = 0;
-    for (std::size_t j = 0; j + 1 < sky_count; ++j) steering_light += bins[j];
-    steering_light += ground * bins.back();
-    steering_light /= points;
+    const double light = steering_light(bins.data(), sky_count, ground);
     for (std::size_t j = 0; j < sky_count; ++j)
-      mix[j] = steering_light > 0 ? static_cast<float>(bins[j] / points / steering_light)
-                                  : static_cast<float>(1.0 / (static_cast<double>(sky_count - 1) + ground));
+      mix[j] = light > 0 ? static_cast<float>(bins[j] / light)
+                         : static_cast<float>(1.0 / (static_cast<double>(sky_count - 1) + ground));
     if (suns.empty()) return;
     // The suns: the mean illuminance over stratified points of the triangle.
     const int m = point ? 1 : std::max(1, options.sun_points);
     std::vector<Vec3d> at;
     for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) {
-        const double r = std::sqrt((i + 0.5) / m), v = (j + 0.5) / m;
-        at.push_back(point ? centre : surface[0] * (1 - r) + surface[1] * (r * (1 - v)) + surface[2] * (r * v));
-      }
+      for (int j = 0; j < m; ++j) at.push_back(point ? centre : point_on_triangle(surface, (i + 0.5) / m, (j + 0.5) / m));
     for (std::size_t k = 0; k < suns.size(); ++k) {
       double sum = 0;
-      if (OpenMesh::dot(suns[k], n) > 0)
-        for (const Vec3d& x : at) sum += sun_illuminance(visibility, glazing, x, n, suns[k], 1.0);
+      for (const Vec3d& x : at) sum += sun_illuminance(visibility, glazing, x, n, suns[k], 1.0);
       mix[sky_count + k] = static_cast<float>(sum / static_cast<double>(at.size()));
     }
   };
@@ -151,33 +153,16 @@ PointCoefficients point_coefficients(const LitScene& lit, const SceneMesh& mesh,
   const std::size_t count = solver.coefficient_count(), sky_count = indirect.size() + 1;
   const double ground = steering.daylight->sky.ground_luminance;
   std::vector<double> sum(count, 0.0);
-  const Vec3d t = OpenMesh::cross(std::abs(normal[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), normal).normalized();
-  const Vec3d b = OpenMesh::cross(normal, t);
   std::uint64_t state = mix(seed);
-  const int side = std::max(1, options.point_side);
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j) {
-      const double u1 = (i + uniform(state)) / side, u2 = (j + uniform(state)) / side;
-      const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-      const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - u1));
-      const Visibility::Intersection hit = vis.intersect(point + normal * (1e-7 * lit.diagonal), dir);
-      if (!hit.hit || !hit.front) continue;
-      const auto& tri = lit.triangles[static_cast<std::size_t>(hit.face)];
-      const double here = (lit.radiosity[tri[0]] * (1 - hit.u - hit.v) + lit.radiosity[tri[1]] * hit.u +
-                           lit.radiosity[tri[2]] * hit.v)
-                              .luminance();
-      const std::uint32_t patch = mesh.patch(FaceHandle(hit.face));
-      const float* c = solver.patch_coefficients(patch);
-      double mean = 0;  // the steering sky's radiosity of the patch, from its channels
-      for (std::size_t k = 0; k + 1 < sky_count; ++k) mean += c[k];
-      mean += ground * c[sky_count - 1];
-      if (!(mean > 0)) continue;
-      const double shape = here / mean;
-      for (std::size_t k = 0; k < count; ++k) sum[k] += shape * c[k];
-    }
+  const int rays = gather_rays(lit, point, normal, options.point_side, state, [&](const Visibility::Intersection& hit) {
+    const float* c = solver.patch_coefficients(mesh.patch(FaceHandle(hit.face)));
+    const double mean = steering_light(c, sky_count, ground);  // the patch's, under the steering sky
+    if (!(mean > 0)) return;
+    const double shape = radiosity_at(lit, hit).luminance() / mean;
+    for (std::size_t k = 0; k < count; ++k) sum[k] += shape * c[k];
+  });
   out.indirect.resize(count);
-  for (std::size_t k = 0; k < count; ++k)
-    out.indirect[k] = static_cast<float>(sum[k] / (static_cast<double>(side) * side));
+  for (std::size_t k = 0; k < count; ++k) out.indirect[k] = static_cast<float>(sum[k] / rays);
   return out;
 }
 

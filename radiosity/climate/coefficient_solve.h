@@ -34,6 +34,7 @@
 #include "radiosity/solver.h"
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <vector>
 
@@ -78,9 +79,9 @@ struct SunNodes {
 std::vector<Vec3d> sun_positions(const SkyPatches& frame, double spacing, const std::vector<Vec3d>& hour_suns,
                                  std::vector<SunNodes>* nodes);
 
-// The steering sky: `scene_sky`'s glazing, directions and up, uniform luminance 1, and
-// the ground at `ground_luminance` (not 0, so that the ground's channel is carried).
-Luminaire steering_sky(const Luminaire& scene_sky, double ground_luminance);
+// The steering sky: uniform luminance 1 through `glazing` (the windows and openings),
+// and the ground at `ground_luminance` (not 0, so that the ground's channel is carried).
+Luminaire steering_sky(std::shared_ptr<const Glazing> glazing, const Vec3d& up, double ground_luminance);
 
 // The channels for the solve (count: indirect.size() + 1 + suns.size()). `visibility`,
 // `steering`, `indirect` and `suns` must outlive it.
