@@ -1348,9 +1348,10 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
     if (channels > 0 && from_luminaire) {
       incident_coefficients(coefficient_slot_[patch_id], shot_luminance * patch_reach * scale / receiver.area,
                             channel_incident.data());
-      book_coefficients(patch_id, channel_incident.data(), 1.0f);
+      book_coefficients(patch_id, channel_incident.data(), 1.0f, true);
     } else if (channels > 0) {
-      book_coefficients(patch_id, coefficient_shot_.data(), static_cast<float>(patch_reach * scale / receiver.area));
+      book_coefficients(patch_id, coefficient_shot_.data(), static_cast<float>(patch_reach * scale / receiver.area),
+                        false);
     }
     mark_surveyed(unit_of_receiver(patch_id));
     const Rgb incident = shot_radiosity * (patch_reach * scale);
@@ -1393,9 +1394,9 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
       if (channels > 0 && from_luminaire) {
         incident_coefficients(coefficient_slot_[patches_.size() + k], shot_luminance * f * scale,
                               channel_incident.data());
-        book_part_coefficients(k, channel_incident.data(), 1.0f);
+        book_part_coefficients(k, channel_incident.data(), 1.0f, true);
       } else if (channels > 0) {
-        book_part_coefficients(k, coefficient_shot_.data(), static_cast<float>(f * scale));
+        book_part_coefficients(k, coefficient_shot_.data(), static_cast<float>(f * scale), false);
       }
     }
   }

@@ -27,6 +27,7 @@
 #include "radiosity/vertex_plane_map.h"
 #include "radiosity/visibility.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -252,12 +253,20 @@ class Solver {
   // Patch p's mean radiosity per channel, reflected light only (count values).
   const float* patch_coefficients(std::uint32_t p) const { return coefficient_total_.data() + p * coefficients_.count; }
   std::size_t coefficient_count() const { return coefficients_.count; }
+  // The absolute channels' (CoefficientChannels::relative on) part of
+  // patch_coefficients(p) that they brought straight from the sky's shot (count -
+  // relative values): a sun's direct light, reflected. The rest is interreflection.
+  const float* patch_direct_coefficients(std::uint32_t p) const {
+    return coefficient_direct_.data() + p * (coefficients_.count - absolute_from());
+  }
+  std::size_t absolute_from() const { return std::min(coefficients_.count, coefficients_.relative); }
 
  private:
   // Coefficient channels (see carry_coefficients; all empty when count is 0).
   CoefficientChannels coefficients_;
   std::vector<float> coefficient_unshot_;       // per patch, radiosity not yet shot
   std::vector<float> coefficient_total_;        // per patch, radiosity received and reflected
+  std::vector<float> coefficient_direct_;       // per patch, the absolute channels' first booking
   std::vector<float> coefficient_part_unshot_;  // per cluster part, power not yet shot
   std::vector<float> coefficient_shot_;         // the current sender's shot (as current_shot_)
   std::vector<float> coefficient_mix_;          // the sky's shot: per receiver in coefficient_slot_
@@ -275,8 +284,10 @@ class Solver {
   void incident_coefficients(std::uint32_t slot, double factor, float* out);
   // Books a patch's reception (see account_transfers): `incident` times `factor` per
   // unit area.
-  void book_coefficients(std::uint32_t patch, const float* incident, float factor);
-  void book_part_coefficients(std::uint32_t part, const float* incident, float factor);
+  // `from_sky`: the sky's shot (its absolute channels also go to coefficient_direct_).
+  void book_coefficients(std::uint32_t patch, const float* incident, float factor, bool from_sky);
+  void book_part_coefficients(std::uint32_t part, const float* incident, float factor, bool from_sky);
+  void book_direct(std::uint32_t patch, const float* incident, float reflected);
   // A sign of life during a long shot (SolveOptions::on_busy): counts the receiving points
   // computed and calls on_busy when 2 s have passed since the last call.
   void beat();

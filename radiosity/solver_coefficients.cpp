@@ -27,6 +27,7 @@ void Solver::carry_coefficients(CoefficientChannels channels) {
   coefficients_ = std::move(channels);
   coefficient_unshot_.assign(patches_.size() * n, 0.0f);
   coefficient_total_.assign(patches_.size() * n, 0.0f);
+  coefficient_direct_.assign(patches_.size() * (n - absolute_from()), 0.0f);
   coefficient_part_unshot_.assign(clusters_.parts.size() * n, 0.0f);
   coefficient_shot_.assign(n, 0.0f);
   coefficient_slot_.assign(patches_.size() + clusters_.parts.size(), kNoSlot);
@@ -74,12 +75,19 @@ void Solver::mix_sky(const std::vector<ElementId>& terminals, const std::vector<
   });
 }
 
+void Solver::book_direct(std::uint32_t patch, const float* incident, float reflected) {
+  const std::size_t n = coefficients_.count, from = absolute_from();
+  float* direct = coefficient_direct_.data() + patch * (n - from);
+  for (std::size_t j = from; j < n; ++j) direct[j - from] += reflected * incident[j];
+}
+
 // The loops below run once per receiver and shot over every channel: plain float
 // multiply-adds over arrays that do not overlap, which the compiler vectorises.
-void Solver::book_coefficients(std::uint32_t patch, const float* incident, float factor) {
+void Solver::book_coefficients(std::uint32_t patch, const float* incident, float factor, bool from_sky) {
   const std::size_t n = coefficients_.count;
   const Patch& p = patches_[patch];
   const auto reflected = static_cast<float>(p.reflectance.luminance()) * factor;
+  if (from_sky) book_direct(patch, incident, reflected);
   float* __restrict total = coefficient_total_.data() + patch * n;
   const float* __restrict in = incident;
   if (p.clustered) {
@@ -99,7 +107,7 @@ void Solver::book_coefficients(std::uint32_t patch, const float* incident, float
   }
 }
 
-void Solver::book_part_coefficients(std::uint32_t part, const float* incident, float factor) {
+void Solver::book_part_coefficients(std::uint32_t part, const float* incident, float factor, bool from_sky) {
   const std::size_t n = coefficients_.count;
   const auto& cl = clusters_.clusters[clusters_.parts[part].cluster];
   float* to = coefficient_part_unshot_.data() + part * n;
@@ -109,6 +117,7 @@ void Solver::book_part_coefficients(std::uint32_t part, const float* incident, f
     const Patch& p = patches_[patch];
     const auto reflected = static_cast<float>(p.reflectance.luminance()) * factor;
     const auto power = reflected * static_cast<float>(p.area);
+    if (from_sky) book_direct(patch, incident, reflected);
     float* total = coefficient_total_.data() + patch * n;
     for (std::size_t j = 0; j < n; ++j) {
       total[j] += reflected * incident[j];

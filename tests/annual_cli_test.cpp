@@ -31,7 +31,8 @@ TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
   test::SyntheticYear clear;  // a site near London, every day clear
   const test::TempWeatherFile weather(clear);
   const auto run = test::run_dynrad("annual '" + sample("daylight_overcast.json") + "' --weather '" + weather.path() +
-                                    "' -o '" + dir.path("room") + "'");
+                                    "' -o '" + dir.path("room") + "' --hour 06-21-13 --hour 01-01-01 "
+                                    "--vertex-coefficients");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto j = nlohmann::json::parse(read(dir.path("room_annual.json")));
   ASSERT_EQ(j["grids"].size(), 1u);
@@ -103,6 +104,41 @@ TEST(AnnualCli, AClearYearOnTheDaylitRoom) {
        at = html.find("data:image/png;base64,", at + 1))
     ++images;
   EXPECT_EQ(images, 4u);
+
+  // The model at 12:00-13:00 on 21 June: a sun patch on the floor (a floor of
+  // reflectance 0.3 to 0.6 in tens of thousands of lux); at midnight, black.
+  ASSERT_EQ(j["hours"].size(), 2u);
+  EXPECT_TRUE(j["hours"][0]["sun"].get<bool>());
+  EXPECT_GT(j["hours"][0]["mean_luminance"].get<double>(), 10);
+  EXPECT_TRUE(j["hours"][1]["dark"].get<bool>());
+  EXPECT_EQ(j["hours"][1]["mean_luminance"].get<double>(), 0);
+  auto ply_vertices = [](const std::string& ply, std::size_t* data) {
+    const std::size_t at = ply.find("element vertex "), end = ply.find("end_header\n");
+    if (at == std::string::npos || end == std::string::npos) return std::size_t(0);
+    *data = end + 11;
+    return static_cast<std::size_t>(std::stoul(ply.substr(at + 15)));
+  };
+  const std::string june = read(dir.path("room_hour_0621_13.ply"));
+  std::size_t data = 0;
+  const std::size_t vertices = ply_vertices(june, &data);
+  ASSERT_GT(vertices, 100u);
+  ASSERT_NE(june.find("property float illuminance"), std::string::npos);
+  float brightest = 0;
+  for (std::size_t v = 0; v < vertices; ++v) {  // x y z, r g b, radiosity r g b, quality: 27 bytes in
+    float quality;
+    std::memcpy(&quality, june.data() + data + v * 39 + 27, 4);
+    brightest = std::max(brightest, quality);
+  }
+  EXPECT_GT(brightest, 20000);
+  EXPECT_TRUE(std::filesystem::exists(dir.path("room_hour_0101_01.ply")));
+  // Every vertex's coefficients: a row per vertex of the mesh beside them, a column per
+  // channel of the solve.
+  const std::string coefficients = read(dir.path("room_vertex_coefficients.npy"));
+  EXPECT_NE(coefficients.find(fmt::format("'shape': ({}, {})", vertices, j["solve"]["channels"].get<int>())),
+            std::string::npos);
+  std::size_t mesh_data = 0;
+  EXPECT_EQ(ply_vertices(read(dir.path("room_vertices.ply")), &mesh_data), vertices);
+  EXPECT_EQ(j["vertex_coefficients"]["sun_positions"].size(), j["solve"]["channels"].get<std::size_t>() - 578);
 }
 
 // A stop during the solve (SIGTERM) still gives the year, from the light shot so far,
@@ -155,6 +191,9 @@ TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
       {room + " --weather '" + dir.path("missing.epw") + "'" + out, "missing.epw"},
       {"'" + dir.path("nogrid.json") + "' --weather '" + weather.path() + "'" + out, "grids"},
       {room + " --weather '" + weather.path() + "' -o '" + dir.path("no/such/dir/out") + "'", "no/such/dir"},
+      {room + " --weather '" + weather.path() + "' --hour noon" + out, "--hour"},
+      {room + " --weather '" + weather.path() + "' --hour 02-30-12" + out, "no such row"},
+      {room + " --weather '" + weather.path() + "' --hour 06-21-0" + out, "no such row"},
   };
   for (const Case& c : cases) {
     const auto run = test::run_dynrad("annual " + c.arguments);

@@ -7,6 +7,7 @@
 #include "radiosity/climate/coefficient_solve.h"
 #include "radiosity/climate/daylight_coefficients.h"
 #include "radiosity/climate/sky_patches.h"
+#include "radiosity/climate/vertex_coefficients.h"
 #include "radiosity/daylight.h"
 #include "radiosity/grid.h"
 #include "radiosity/lit_scene.h"
@@ -21,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 namespace dynrad {
 namespace {
@@ -179,6 +181,7 @@ struct Solved {
   LoadedScene scene;
   std::unique_ptr<ElementHierarchy> hierarchy;
   std::unique_ptr<rad::Solver> solver;
+  rad::Solver::Output output;
   rad::LitScene lit;
 };
 std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Luminaire> luminaires,
@@ -204,8 +207,8 @@ std::unique_ptr<Solved> solve_room(const std::string& obj, std::vector<rad::Lumi
     out->solver->carry_coefficients(channels(*visibility));
   }
   out->solver->run();
-  const rad::Solver::Output result = out->solver->output();
-  out->lit = rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.emission_scale, true);
+  out->output = out->solver->output();
+  out->lit = rad::lit_scene(mesh, out->output.split, out->output.radiosity, luminaires, options.emission_scale, true);
   return out;
 }
 
@@ -248,6 +251,58 @@ TEST(DaylightCoefficients, TheSteeringSkyThroughItsChannelsIsItsOwnSolve) {
       for (std::size_t k = 0; k < suns.size(); ++k) sun_light += c.indirect[indirect.size() + 1 + k];
     }
   EXPECT_GT(sun_light, 0);  // the suns' light came in through the window and was carried
+  // At the vertices too: the steering sky through their coefficients is the solve's own
+  // radiosity there; the suns' channels carry light (their interreflection) but no
+  // vertex on the ceiling holds a sun's direct light, which a shadow ray gives instead.
+  const rad::VertexCoefficients vertices =
+      rad::vertex_coefficients(*solved->scene.mesh, *solved->solver, solved->output, indirect.size() + 1,
+                               options.steering_ground);
+  ASSERT_EQ(vertices.size(), solved->output.radiosity.size());
+  ASSERT_EQ(vertices.count, solved->solver->coefficient_count());
+  const std::vector<double> steered = rad::vertex_hour(vertices, uniform, *solved->lit.visibility, nullptr);
+  double worst = 0, ceiling_sun = 0, sun_interreflected = 0;
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const double own = solved->output.radiosity[v].luminance();
+    if (own > 0) worst = std::max(worst, std::abs(steered[v] / own - 1));
+    for (std::size_t k = indirect.size() + 1; k < vertices.count; ++k) {
+      sun_interreflected += vertices.at(v)[k];
+      if (vertices.point[v][2] > 2.99) ceiling_sun = std::max(ceiling_sun, double(vertices.at(v)[k]));
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(sun_interreflected, 0);
+  // The ceiling sees no sun; all its sun light is interreflected, and small: per lx of
+  // direct normal sun, well below what a floor in the sun would reflect (0.5 x cos).
+  EXPECT_GT(ceiling_sun, 0);
+  EXPECT_LT(ceiling_sun, 0.05);
+}
+
+// The south room's surfaces inside (not the glass, not the overhang and the facade's
+// outside): each one's mean of a per-vertex value over its triangles, by area.
+std::map<std::string, double> surface_means(const rad::LitScene& lit, const std::vector<double>& value) {
+  std::map<std::string, std::pair<double, double>> sum;
+  for (const auto& t : lit.triangles) {
+    const Vec3d& a = lit.positions[t[0]];
+    const Vec3d& b = lit.positions[t[1]];
+    const Vec3d& c = lit.positions[t[2]];
+    const Vec3d centre = (a + b + c) / 3.0, cross = OpenMesh::cross(b - a, c - a);
+    const double area = cross.norm() / 2;
+    const Vec3d n = cross.normalized();
+    std::string name;
+    if (centre[1] < 1e-6 && n[1] < 0.5) continue;  // outside, the overhang or the glass's back
+    if (n[2] > 0.9) name = "floor";
+    else if (n[2] < -0.9) name = "ceiling";
+    else if (n[0] > 0.9) name = "west wall";
+    else if (n[0] < -0.9) name = "east wall";
+    else if (n[1] < -0.9) name = "north wall";
+    else if (n[1] > 0.9 && !(centre[0] > 1 && centre[0] < 3 && centre[2] > 0.9 && centre[2] < 2.1)) name = "facade";
+    else continue;
+    sum[name].first += area * (value[t[0]] + value[t[1]] + value[t[2]]) / 3;
+    sum[name].second += area;
+  }
+  std::map<std::string, double> out;
+  for (const auto& [name, s] : sum) out[name] = s.first / s.second;
+  return out;
 }
 
 // The test: the coefficients of one solve, for several hours (skies with and
@@ -302,7 +357,10 @@ TEST(DaylightCoefficients, OneSolvesCoefficientsGiveEachHoursOwnSolve) {
       EXPECT_NEAR(e.sky_direct / g.direct, 1, 0.003) << points[k];
     }
   }
-  double worst = 0, worst_indirect = 0;
+  const rad::VertexCoefficients vertices =
+      rad::vertex_coefficients(*coefficient_solve->scene.mesh, *coefficient_solve->solver, coefficient_solve->output,
+                               indirect.size() + 1, options.steering_ground);
+  double worst = 0, worst_indirect = 0, worst_surface = 0;
   for (std::size_t h = 0; h < hours.size(); ++h) {
     const std::string& sky = hours[h];
     const auto& sources = hour_sources[h];
@@ -322,7 +380,23 @@ TEST(DaylightCoefficients, OneSolvesCoefficientsGiveEachHoursOwnSolve) {
                                                     << " vs " << e.sun + e.sky_direct << ", indirect " << g.indirect
                                                     << " vs " << e.indirect;
     }
+    // The model itself: each surface's mean radiosity from the vertices' coefficients
+    // against the hour's own solve (the meshes differ: each solve refined its own).
+    const std::vector<double> at_vertices =
+        rad::vertex_hour(vertices, hour, *coefficient_solve->lit.visibility, day.glazing.get());
+    std::vector<double> own_values(own->lit.radiosity.size());
+    for (std::size_t v = 0; v < own_values.size(); ++v) own_values[v] = own->lit.radiosity[v].luminance();
+    const auto from_coefficients = surface_means(coefficient_solve->lit, at_vertices);
+    const auto from_own = surface_means(own->lit, own_values);
+    for (const auto& [name, mean] : from_own) {
+      const double ratio = from_coefficients.at(name) / mean;
+      std::printf("  hour %zu, %s: mean radiosity %.2f from the coefficients, %.2f from its own solve (%+.2f%%)\n", h,
+                  name.c_str(), from_coefficients.at(name), mean, 100 * (ratio - 1));
+      worst_surface = std::max(worst_surface, std::abs(ratio - 1));
+      EXPECT_NEAR(ratio, 1, 0.025) << sky << ": " << name;
+    }
   }
+  std::printf("the model's surfaces from vertex coefficients: worst mean %.3f%%\n", 100 * worst_surface);
   std::printf("coefficients of one solve against each hour's solve: worst %.3f%% (indirect alone %.3f%%) over %zu "
               "points and %zu hours\n",
               100 * worst, 100 * worst_indirect, points.size(), hours.size());

@@ -17,9 +17,11 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "plugin/cli/annual_meshes.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/grid_picture.h"
 #include "plugin/cli/html_annual.h"
+#include "plugin/cli/npy.h"
 #include "plugin/cli/png.h"
 #include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
@@ -45,6 +47,8 @@ namespace {
 struct AnnualCliOptions {
   LoadOptions load;
   std::string weather, output, occupied = "8-18";
+  std::vector<std::string> hours;    // --hour MM-DD-HH: a lit mesh of that weather row
+  bool vertex_coefficients = false;  // every vertex's coefficients as .npy
 };
 
 // "8-18": the first and last hour of the occupied day (08:00 to 18:00).
@@ -82,22 +86,6 @@ void scene_sky_settings(const std::string& scene, rad::AnnualOptions& options) {
   }
 }
 
-// A little-endian float32 array of shape (rows, columns) in NumPy's .npy format 1.0.
-void write_npy(const std::string& path, const std::vector<float>& values, std::size_t rows, std::size_t columns) {
-  AtomicFile file(path);
-  std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", rows, columns);
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::ostream& out = file.stream();
-  out.write("\x93NUMPY\x01\x00", 8);
-  const auto length = static_cast<std::uint16_t>(header.size());
-  const char size[2] = {static_cast<char>(length & 0xff), static_cast<char>(length >> 8)};
-  out.write(size, 2);
-  out << header;
-  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
-  file.commit();
-}
-
 int run_annual(const AnnualCliOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   const auto [first_hour, last_hour] = parse_occupied(options.occupied);
@@ -116,6 +104,13 @@ int run_annual(const AnnualCliOptions& options) {
       !options.output.empty() ? options.output
                               : (std::filesystem::path(options.load.input).parent_path() /
                                  std::filesystem::path(options.load.input).stem()).string();
+  // The weather's rows, for --hour.
+  std::vector<rad::HourEnding> rows;
+  for (const auto& h : weather.hours) rows.push_back({h.month, h.day, h.hour});
+  std::vector<AnnualHour> mesh_hours;
+  for (const std::string& h : options.hours) mesh_hours.push_back(parse_annual_hour(h, rows));
+  for (const std::string& file : annual_mesh_files(prefix, mesh_hours, rows, options.vertex_coefficients))
+    check_output_writable(file);
   check_output_writable(prefix + "_annual.json");
   check_output_writable(prefix + "_annual.html");
   for (const rad::GridSpec& g : grids)
@@ -348,6 +343,14 @@ int run_annual(const AnnualCliOptions& options) {
     plan("UDI", "% UDI 100-3000", [](const rad::PointMetrics& q) { return 100.0 * q.udi_useful; });
     plan("ASE", "h sun > 1000 lx", [](const rad::PointMetrics& q) { return static_cast<double>(q.ase_hours); });
   }
+  std::unique_ptr<rad::VertexCoefficients> vertices;
+  if (!mesh_hours.empty() || options.vertex_coefficients) {
+    vertices = std::make_unique<rad::VertexCoefficients>(rad::vertex_coefficients(
+        mesh, solver, result, indirect.size() + 1, steering.daylight->sky.ground_luminance));
+    annual_mesh_outputs(prefix, mesh, result.split, *vertices, year, mesh_hours, options.vertex_coefficients,
+                        *lit.visibility, glazing.get(), indirect, writes, out);
+    spdlog::info("the model: coefficients of {} vertices in {:.1f} s", vertices->size(), since());
+  }
   for (const auto& write : writes) write();
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   out["solve"] = {{"patches", hierarchy.patch_count()},
@@ -384,6 +387,12 @@ Command add_annual_command(CLI::App& app) {
   command->add_option("--occupied", options->occupied,
                       "Occupied hours FIRST-LAST, local standard time, for sDA, ASE, UDI and DA")
       ->capture_default_str();
+  command->add_option("--hour", options->hours,
+                      "MM-DD-HH: also write the model lit by that weather row's sky and sun (the hour ending at HH:00 "
+                      "standard time), PREFIX_hour_MMDD_HH.ply; repeat for more hours");
+  command->add_flag("--vertex-coefficients", options->vertex_coefficients,
+                    "Also write every vertex's daylight coefficients, PREFIX_vertex_coefficients.npy (vertices x "
+                    "channels), with PREFIX_vertices.ply, the mesh its rows belong to");
   return [options] { return run_annual(*options); };
 }
 

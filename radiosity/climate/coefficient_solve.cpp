@@ -13,19 +13,6 @@
 
 namespace dynrad::rad {
 
-namespace {
-
-// The steering sky's light from per-channel values (the sky's channels at luminance 1,
-// the ground's at `ground`; the suns' after them are no part of it).
-template <typename T>
-double steering_light(const T* values, std::size_t sky_count, double ground) {
-  double sum = 0;
-  for (std::size_t j = 0; j + 1 < sky_count; ++j) sum += values[j];
-  return sum + ground * values[sky_count - 1];
-}
-
-}  // namespace
-
 Luminaire steering_sky(std::shared_ptr<const Glazing> glazing, const Vec3d& up, double ground_luminance) {
   auto day = std::make_shared<Daylight>();
   day->sky.type = SkyModel::Type::uniform;

@@ -67,6 +67,15 @@ struct CoefficientOptions {
   int sun_points = 6;            // sun_points^2 points per receiving patch for its share of each sun
 };
 
+// The steering sky's light from per-channel values (the sky's channels at luminance 1,
+// the ground's at `ground`; the suns' after them are no part of it).
+template <typename T>
+double steering_light(const T* values, std::size_t sky_count, double ground) {
+  double sum = 0;
+  for (std::size_t j = 0; j + 1 < sky_count; ++j) sum += values[j];
+  return sum + ground * values[sky_count - 1];
+}
+
 // An hour's sun as weights of up to four sun positions (index -1: none).
 struct SunNodes {
   std::array<int, 4> position{-1, -1, -1, -1};
