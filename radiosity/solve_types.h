@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dynrad::rad {
@@ -154,6 +155,25 @@ struct ErrorEstimate {
   double stop_measure() const { return unshot + discretisation; }
 };
 
+// Why a solve stopped. Reports write it as its name (to_string); parse_stop_reason reads
+// the name back.
+enum class StopReason {
+  converged,     // the unshot fraction fell to SolveOptions::converge
+  error_target,  // the estimated error fell to SolveOptions::error_target
+  error_floor,   // only the mesh's error was left above the target (not reached)
+  iterations,    // SolveOptions::max_iterations shots
+  time_limit,    // SolveOptions::time_limit seconds
+  interrupted,   // SolveOptions::should_stop said so
+};
+// "converged", "error target", "error floor", "iterations", "time limit", "interrupted".
+const char* to_string(StopReason reason);
+// The reason of that name; false when there is none.
+bool parse_stop_reason(std::string_view name, StopReason* reason);
+// Whether the solve reached what it was asked for (converged or its error target).
+inline bool reached_target(StopReason reason) {
+  return reason == StopReason::converged || reason == StopReason::error_target;
+}
+
 struct SolveReport {
   std::string method;
   std::size_t iterations = 0;
@@ -166,7 +186,7 @@ struct SolveReport {
   std::size_t receivers = 0;
   double unshot_fraction = 1;
   double seconds = 0;
-  std::string stopped_by;  // "error target", "error floor", "converged", "iterations", "time limit", "interrupted"
+  StopReason stopped_by = StopReason::converged;
   std::vector<double> unshot_history;  // after each shot
   std::vector<std::uint64_t> transfers_history;  // energy transfers so far, after each shot
   double form_factor_sum_error = 0;    // mean |1 - sum of receiver form factors| before normalisation

@@ -1480,7 +1480,7 @@ SolveReport Solver::run() {
                                                     static_cast<std::size_t>(options_.threads));
   const auto start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  report_.stopped_by = "converged";
+  report_.stopped_by = StopReason::converged;
   report_.error_target = options_.error_target;
   // The error estimate costs a pass over the elements: it is taken when unshot power
   // has fallen by a fifth since the last look, or every 64 shots (at every tenth, its
@@ -1501,26 +1501,26 @@ SolveReport Solver::run() {
       // ambient term but direct light that the surfaces under it lack altogether.
       if (primary_sources_shot()) {
         if (e.stop_measure() <= options_.error_target) {
-          report_.stopped_by = "error target";
+          report_.stopped_by = StopReason::error_target;
           break;
         }
         // Only the mesh's error is left above the target: shooting on would buy little.
         if (e.unshot <= 0.1 * options_.error_target || e.unshot <= 0.25 * e.discretisation) {
-          report_.stopped_by = "error floor";
+          report_.stopped_by = StopReason::error_floor;
           break;
         }
       }
     }
     if (options_.max_iterations > 0 && report_.iterations >= options_.max_iterations) {
-      report_.stopped_by = "iterations";
+      report_.stopped_by = StopReason::iterations;
       break;
     }
     if (options_.time_limit > 0 && elapsed() >= options_.time_limit) {
-      report_.stopped_by = "time limit";
+      report_.stopped_by = StopReason::time_limit;
       break;
     }
     if (options_.should_stop && options_.should_stop()) {
-      report_.stopped_by = "interrupted";
+      report_.stopped_by = StopReason::interrupted;
       break;
     }
     if (!shoot_once()) break;

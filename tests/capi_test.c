@@ -546,7 +546,7 @@ static void test_defaults(void) {
     dynrad_report report;
     CHECK(dynrad_result_report(result, &report) == DYNRAD_OK, "%s", dynrad_last_error());
     const double target = q == 0 ? 0.01 : 0.03;
-    CHECK(report.stopped_by == DYNRAD_STOP_CONVERGED, "stopped_by %d", report.stopped_by);
+    CHECK(report.stopped_by == DYNRAD_STOP_ERROR_TARGET, "stopped_by %d", report.stopped_by);
     CHECK(report.estimated_error > 0 && report.estimated_error <= target, "estimated error %g, target %g",
           report.estimated_error, target);
     const size_t n = dynrad_result_vertex_count(result);

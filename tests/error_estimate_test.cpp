@@ -145,7 +145,7 @@ TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
     const rad::Solver::Output out = s.solver->output();
     const double measured = mean_error_against_reference(s, out, reference);
     const double estimated = s.report.estimated_error.total();
-    EXPECT_EQ(s.report.stopped_by, "error target");
+    EXPECT_EQ(s.report.stopped_by, rad::StopReason::error_target);
     EXPECT_LE(estimated, rad::quality_preset(q).error_target);
     EXPECT_GE(estimated + noise, measured);
     EXPECT_GE(estimated + noise, area_weighted_error(s, out, whole_room));
@@ -208,7 +208,7 @@ TEST(ErrorEstimate, BoundsTheMeanErrorInAFurnace) {
   const rad::Solver::Output out = s.solver->output();
   double mean = 0;
   for (const Rgb& b : out.radiosity) mean += std::abs(b.g - 2.0) / 2.0 / static_cast<double>(out.radiosity.size());
-  EXPECT_EQ(s.report.stopped_by, "error target");
+  EXPECT_EQ(s.report.stopped_by, rad::StopReason::error_target);
   EXPECT_GE(s.report.estimated_error.total(), mean);
   EXPECT_LT(mean, 0.005);
 }
@@ -229,7 +229,7 @@ TEST(ErrorEstimate, TheUnshotLightBesideAFurnacesEdgesIsWrittenAsItIs) {
       o.whole_patch_senders = whole;
       o.near_unshot = near;
     });
-    EXPECT_EQ(s.report.stopped_by, "error target");
+    EXPECT_EQ(s.report.stopped_by, rad::StopReason::error_target);
     const rad::Solver::Output out = s.solver->output();
     double worst = 0;
     for (const Rgb& b : out.radiosity) worst = std::max(worst, std::abs(b.g - 2.0) / 2.0);

@@ -114,7 +114,7 @@ TEST_P(Physics, FurnaceGivesEOverOneMinusRho) {
   }
   Solved s = prepare(soup, 0.5, options, config);
   const SolveReport report = s.solver->run();
-  EXPECT_EQ(report.stopped_by, "converged");
+  EXPECT_EQ(report.stopped_by, rad::StopReason::converged);
   for (const Rgb& b : s.solver->output().radiosity) {
     EXPECT_NEAR(b.r, 2.0, 0.005 * 2.0);
     EXPECT_NEAR(b.b, 2.0, 0.005 * 2.0);

@@ -182,10 +182,15 @@ std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup, bool merge_flat_r
   return std::move(loaded.mesh);
 }
 
-dynrad_stop_reason stop_reason(const std::string& stopped_by) {
-  if (stopped_by == "iterations") return DYNRAD_STOP_ITERATIONS;
-  if (stopped_by == "time limit") return DYNRAD_STOP_TIME_LIMIT;
-  if (stopped_by == "interrupted") return DYNRAD_STOP_CANCELLED;
+dynrad_stop_reason stop_reason(rad::StopReason reason) {
+  switch (reason) {
+    case rad::StopReason::converged: return DYNRAD_STOP_CONVERGED;
+    case rad::StopReason::error_target: return DYNRAD_STOP_ERROR_TARGET;
+    case rad::StopReason::error_floor: return DYNRAD_STOP_ERROR_FLOOR;
+    case rad::StopReason::iterations: return DYNRAD_STOP_ITERATIONS;
+    case rad::StopReason::time_limit: return DYNRAD_STOP_TIME_LIMIT;
+    case rad::StopReason::interrupted: return DYNRAD_STOP_CANCELLED;
+  }
   return DYNRAD_STOP_CONVERGED;
 }
 

@@ -357,7 +357,7 @@ int run_annual(const AnnualCliOptions& options) {
                   {"channels", solver.coefficient_count()},
                   {"shots", report.iterations},
                   {"unshot_percent", 100 * report.unshot_fraction},
-                  {"stopped_by", report.stopped_by}};
+                  {"stopped_by", rad::to_string(report.stopped_by)}};
   if (interrupted) out["interrupted"] = true;
   {
     AtomicFile json(prefix + "_annual.json", std::ios::out);

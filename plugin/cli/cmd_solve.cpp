@@ -387,7 +387,7 @@ int run_solve(SolveCliOptions& options) {
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
                "mesh, {:.2f}% shadows inside elements), {} visibility rays; exposure {:.4g}",
-               report.iterations, report.seconds, report.stopped_by, 100 * report.unshot_fraction,
+               report.iterations, report.seconds, rad::to_string(report.stopped_by), 100 * report.unshot_fraction,
                100 * report.estimated_error.total(), 100 * report.estimated_error.unshot,
                100 * report.estimated_error.discretisation, 100 * report.estimated_error.shadows,
                report.visibility_rays, exposure);
@@ -430,7 +430,7 @@ int run_solve(SolveCliOptions& options) {
                             {"vertices_added", outlines.vertices_added},
                             {"flips", outlines.flips},
                             {"seconds", outlines.seconds}};
-    j["stopped_by"] = report.stopped_by;
+    j["stopped_by"] = rad::to_string(report.stopped_by);
     j["unshot_history"] = report.unshot_history;
     j["transfers_history"] = report.transfers_history;
     j["form_factor_sum_error"] = report.form_factor_sum_error;
@@ -499,25 +499,25 @@ int run_solve(SolveCliOptions& options) {
   if (!report.refinement_stopped.empty())
     spdlog::warn("refinement stopped at shot {} ({} reached, {} elements); the solve went on without it.",
                  report.refinement_stopped_at, report.refinement_stopped, report.elements);
-  if (report.stopped_by == "interrupted") {
+  if (report.stopped_by == rad::StopReason::interrupted) {
     spdlog::warn("interrupted: wrote the solution so far, with {:.2f}% of the emitted power not yet shot.",
                  100 * report.unshot_fraction);
     return kExitInterrupted;
   }
-  if (report.stopped_by == "error floor")
+  if (report.stopped_by == rad::StopReason::error_floor)
     spdlog::warn("the estimated error is {:.2f}%, above the target {:.2f}%, and what is left is the mesh's ({:.2f}%): "
                  "shooting longer would not help. Try --quality high, or a smaller --patch-size or a larger "
                  "--max-level.",
                  100 * report.estimated_error.total(), 100 * options.solve.error_target,
                  100 * (report.estimated_error.discretisation + report.estimated_error.shadows));
-  else if (report.stopped_by == "error target" && report.estimated_error.total() > options.solve.error_target)
+  else if (report.stopped_by == rad::StopReason::error_target && report.estimated_error.total() > options.solve.error_target)
     spdlog::info("the estimated error is {:.2f}%, above the target {:.2f}%: {:.2f}% of it is shadows' edges inside "
                  "elements, which shooting longer does not change; the PLY's `error` shows where they are, and a "
                  "smaller --patch-size or a higher --quality draws them more finely.",
                  100 * report.estimated_error.total(), 100 * options.solve.error_target,
                  100 * report.estimated_error.shadows);
-  else if (report.stopped_by != "converged" && report.stopped_by != "error target")
-    spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", report.stopped_by,
+  else if (!rad::reached_target(report.stopped_by))
+    spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", rad::to_string(report.stopped_by),
                  100 * report.unshot_fraction, 100 * options.solve.converge);
   return kExitOk;
 }

@@ -22,7 +22,7 @@ STATUS_NAMES = {
     -6: "DYNRAD_INTERNAL_ERROR",
 }
 OK, STOPPED = 0, 1
-STOP_REASONS = ("converged", "iterations", "time limit", "cancelled")
+STOP_REASONS = ("converged", "iterations", "time limit", "cancelled", "error target", "error floor")
 
 
 class DynradError(RuntimeError):

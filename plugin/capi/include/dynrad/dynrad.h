@@ -178,7 +178,8 @@ typedef int (*dynrad_progress_fn)(uint64_t shot, double unshot_fraction, void* u
  * the calling thread. `cancel` (may be NULL) is read at every shot boundary; another
  * thread sets *cancel to non-zero to stop there. Either way of stopping returns
  * DYNRAD_STOPPED with a valid *out_result holding the solution so far; otherwise
- * DYNRAD_OK once a stop rule (converge, iterations, time limit) holds. On any other
+ * DYNRAD_OK once a stop rule (converge, error target or floor, iterations, time limit)
+ * holds (dynrad_report.stopped_by says which). On any other
  * status *out_result is set to NULL. The scene is not changed and may be solved again. */
 DYNRAD_API dynrad_status dynrad_solve(const dynrad_scene* scene, const dynrad_options* options,
                                       dynrad_progress_fn progress, void* user, const volatile int* cancel,
@@ -203,10 +204,14 @@ DYNRAD_API dynrad_status dynrad_result_radiosity(const dynrad_result* result, fl
 DYNRAD_API dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity);
 
 typedef enum dynrad_stop_reason {
-  DYNRAD_STOP_CONVERGED = 0, /* the error target (or the converge fraction) was reached */
-  DYNRAD_STOP_ITERATIONS = 1,
-  DYNRAD_STOP_TIME_LIMIT = 2,
-  DYNRAD_STOP_CANCELLED = 3 /* progress callback or cancel flag */
+  DYNRAD_STOP_CONVERGED = 0,    /* the unshot fraction fell to dynrad_options.converge */
+  DYNRAD_STOP_ITERATIONS = 1,   /* max_iterations shots */
+  DYNRAD_STOP_TIME_LIMIT = 2,   /* time_limit seconds */
+  DYNRAD_STOP_CANCELLED = 3,    /* progress callback or cancel flag */
+  DYNRAD_STOP_ERROR_TARGET = 4, /* the estimated error fell to the error target */
+  /* Stopped short of the error target: only the mesh's error was left above it, which
+     shooting on would not lower (finer patches or a higher max level would). */
+  DYNRAD_STOP_ERROR_FLOOR = 5
 } dynrad_stop_reason;
 
 typedef struct dynrad_report {
