@@ -148,7 +148,7 @@ TEST(AnnualCli, AStoppedSolveStillGivesTheYearFromTheLightSoFar) {
   test::SyntheticYear clear;
   const test::TempWeatherFile weather(clear);
   const auto run = test::run_dynrad_and_signal("annual '" + sample("daylight_overcast.json") + "' --weather '" +
-                                                   weather.path() + "' -o '" + dir.path("room") + "'",
+                                                   weather.path() + "' -o '" + dir.path("room") + "' --blinds 0.2",
                                                2.0, "TERM", " channels");
   ASSERT_NE(run.output.find("exit=3"), std::string::npos) << run.output;
   const auto j = nlohmann::json::parse(read(dir.path("room_annual.json")));
@@ -157,6 +157,11 @@ TEST(AnnualCli, AStoppedSolveStillGivesTheYearFromTheLightSoFar) {
   EXPECT_GT(j["solve"]["unshot_percent"].get<double>(), 1);
   EXPECT_TRUE(std::filesystem::exists(dir.path("room_room_hourly.npy")));
   EXPECT_GT(j["grids"][0]["DA300_mean"].get<double>(), 0);
+  // LM-83's blinds: a clear year through a south window closes them in many occupied
+  // hours, and the report says so.
+  EXPECT_GT(j["grids"][0]["blinds_closed_hours"].get<int>(), 100);
+  EXPECT_NE(j["conventions"]["blinds"].get<std::string>().find("pass 0.2"), std::string::npos);
+  EXPECT_NE(j["grids"][0]["notes"].dump().find("LM-83 blinds: closed in"), std::string::npos);
 }
 
 TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
@@ -192,6 +197,7 @@ TEST(AnnualCli, BadInputIsRefusedBeforeAnyWorkAndWritesNothing) {
       {"'" + dir.path("nogrid.json") + "' --weather '" + weather.path() + "'" + out, "grids"},
       {room + " --weather '" + weather.path() + "' -o '" + dir.path("no/such/dir/out") + "'", "no/such/dir"},
       {room + " --weather '" + weather.path() + "' --hour noon" + out, "--hour"},
+      {room + " --weather '" + weather.path() + "' --blinds 1.5" + out, "--blinds"},
       {room + " --weather '" + weather.path() + "' --hour 02-30-12" + out, "no such row"},
       {room + " --weather '" + weather.path() + "' --hour 06-21-0" + out, "no such row"},
   };

@@ -49,6 +49,7 @@ struct AnnualCliOptions {
   std::string weather, output, occupied = "8-18";
   std::vector<std::string> hours;    // --hour MM-DD-HH: a lit mesh of that weather row
   bool vertex_coefficients = false;  // every vertex's coefficients as .npy
+  double blinds = -1;                // --blinds T: LM-83's blinds rule, closed blinds passing T; < 0: none
 };
 
 // "8-18": the first and last hour of the occupied day (08:00 to 18:00).
@@ -229,7 +230,13 @@ int run_annual(const AnnualCliOptions& options) {
                    "{} degrees, one solve of {} patches",
                    co.fine_subdivision, fine.size(), co.indirect_subdivision, indirect.size(), year.suns.size(),
                    co.sun_spacing, hierarchy.patch_count())},
-      {"blinds", "none (LM-83's operable-blinds rule is not applied)"}};
+      {"blinds",
+       options.blinds < 0
+           ? std::string("none (LM-83's operable-blinds rule is not applied; --blinds T applies it)")
+           : fmt::format("LM-83's operable blinds: closed in an occupied hour when more than 2% of a grid's points get "
+                         "1000 lx or more of direct sun; closed, they block the direct sun and pass {} of the rest "
+                         "(sky, ground and every interreflection)",
+                         options.blinds)}};
   // Every output is written at the end, once every grid has been computed: a grid that
   // fails leaves nothing behind.
   std::vector<std::function<void()>> writes;
@@ -257,16 +264,20 @@ int run_annual(const AnnualCliOptions& options) {
       if (!hours.masked[k]) kept.push_back(k);
     if (kept.empty()) throw InputError(options.load.input, 0, "grid \"" + spec.name + "\" lies wholly inside solids.");
     rad::HourlyIlluminance total(kept.size(), hours.total.hours), sun(kept.size(), hours.total.hours);
+    rad::HourlyIlluminance closed(options.blinds >= 0 ? kept.size() : 0, options.blinds >= 0 ? hours.total.hours : 0);
     for (std::size_t h = 0; h < hours.total.hours; ++h)
       for (std::size_t k = 0; k < kept.size(); ++k) {
         total.at(h, k) = hours.total.at(h, kept[k]);
         sun.at(h, k) = hours.sun.at(h, kept[k]);
+        if (options.blinds >= 0)
+          closed.at(h, k) = static_cast<float>(options.blinds * std::max(0.0f, total.at(h, k) - sun.at(h, k)));
       }
     rad::AnnualInputs inputs;
     inputs.total = &total;
     inputs.direct_sun = &sun;
     inputs.occupied = &occupied;
     inputs.daylight_hours = &daylight_hours;
+    if (options.blinds >= 0) inputs.blinds_closed = &closed;
     std::vector<rad::PointMetrics> per_point;
     const rad::GridMetrics m = rad::annual_metrics(inputs, {}, &per_point);
     nlohmann::json g = {{"name", spec.name},
@@ -279,6 +290,7 @@ int run_annual(const AnnualCliOptions& options) {
                         {"UDI_below_100", 100 * m.mean_udi_low},
                         {"UDI_100_3000", 100 * m.mean_udi_useful},
                         {"UDI_above_3000", 100 * m.mean_udi_high},
+                        {"blinds_closed_hours", m.blinds ? nlohmann::json(m.blinds_closed_hours) : nlohmann::json()},
                         {"notes", m.notes}};
     if (m.en17037) {
       nlohmann::json levels = nlohmann::json::array();
@@ -387,6 +399,11 @@ Command add_annual_command(CLI::App& app) {
   command->add_option("--occupied", options->occupied,
                       "Occupied hours FIRST-LAST, local standard time, for sDA, ASE, UDI and DA")
       ->capture_default_str();
+  command->add_option("--blinds", options->blinds,
+                      "Apply LM-83's operable-blinds rule to sDA, DA, cDA and UDI: in an hour when more than 2% of the "
+                      "points get direct sun of 1000 lx or more, the blinds close, block the direct sun and pass this "
+                      "share of the rest (0 to 1; default: no blinds)")
+      ->check(CLI::Range(0.0, 1.0));
   command->add_option("--hour", options->hours,
                       "MM-DD-HH: also write the model lit by that weather row's sky and sun (the hour ending at HH:00 "
                       "standard time), PREFIX_hour_MMDD_HH.ply; repeat for more hours");
