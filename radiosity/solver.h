@@ -558,6 +558,39 @@ class Solver {
     }
   };
   std::vector<WalkChunk> walk_chunks_;
+  // One shot's steps (shoot.cpp, Figure 5).
+  // What decides refinement in this shot (a luminaire's and a primary patch's are
+  // sharper: see shot_rules()).
+  struct ShotRules {
+    bool from_luminaire = false, primary = false, sharp = false;
+    int max_generation = 0, detail_generation = 0;  // how deep elements may go (detail: on Patch::detail)
+    OracleThresholds oracle, detail_oracle;
+    Rgb ambient_now;  // for the push-down oracle (OracleThresholds::pushdown_ambient)
+  };
+  // The walk's lists: this level's elements, what it passes on, where the shot stopped.
+  struct ShotWalk {
+    std::vector<ElementId> level, next;
+    std::vector<ElementId> passed;     // the shot goes on below them
+    std::vector<ElementId> subdivide;  // leaves among them, to split
+    std::vector<ElementId> ready;      // existing elements of the next level
+    std::vector<ElementId> terminals;  // the shot stopped there
+    std::vector<double> reach;         // per terminal
+    // Adaptive: children of a leaf split in this shot, which the walk splits again to
+    // complete the 1 -> 4 split (sorted), this level's and the next's.
+    std::vector<ElementId> complete_split, complete_split_next;
+  };
+  void start_heartbeat();
+  // Picks the sender (sender_) and starts its shot: its light leaves its unshot
+  // radiosity, its shape is set. False when nothing is left to shoot.
+  bool pick_sender(Rgb& shot);
+  ShotRules shot_rules(std::uint32_t sender);  // also sets shot_max_rays_
+  // shoot(i, q) and the oracle for every element of walk.level.
+  void shoot_level(ShotWalk& walk, const ShotRules& rules, const Rgb& shot);
+  void shoot_element(ElementId q, const ShotRules& rules, const Rgb& shot,
+                     const std::vector<ElementId>& complete_split, WalkChunk& out);
+  void subdivide(ShotWalk& walk, const Rgb& shot);   // splits walk.subdivide; new elements start from their parent
+  void next_level(ShotWalk& walk, const Rgb& shot);  // the passed elements take dB; their children are the next level
+  void update(std::uint32_t sender, const Rgb& shot);  // the sender's shot is booked; the shot counted
   // RefineSettings::patch_area, but no more than the largest patch: patches given
   // larger than the model's faces (a box of 2 m faces at patch size 10) still refine.
   double patch_area_ = 0;
