@@ -89,13 +89,6 @@ bool Solver::shoot_once() {
   return true;
 }
 
-void Solver::start_heartbeat() {
-  shot_start_ = std::chrono::steady_clock::now();
-  shot_points_ = 0;
-  next_beat_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                   (shot_start_ + std::chrono::seconds(2)).time_since_epoch()).count();
-}
-
 bool Solver::pick_sender(Rgb& shot) {
   std::uint32_t i = 0;
   Rgb unshot;  // the sender's, before this shot

@@ -22,6 +22,7 @@
 #include "radiosity/grow_array.h"
 #include "radiosity/luminaire.h"
 #include "radiosity/oracle.h"
+#include "radiosity/process_memory.h"
 #include "radiosity/receiver_tree.h"
 #include "radiosity/solve_types.h"
 #include "radiosity/vertex_plane_map.h"
@@ -126,11 +127,6 @@ struct RefineSettings {
   // the patch size and 1/sqrt(2) of it, so a whole patch has at least that area.
   double patch_area = 0;
 };
-
-// Resident memory of this process in bytes (Linux /proc; 0 where unknown).
-std::size_t resident_memory();
-// The process's peak resident memory so far (VmHWM; 0 where unknown).
-std::size_t peak_resident_memory();
 
 // How a point's view of a sender was decided by rays: not at all (no rays: the sender
 // lies behind the point, or its light is decided otherwise: luminaires, clusters), by
