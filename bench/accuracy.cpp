@@ -6,8 +6,8 @@
 // Usage: bench_accuracy [converge] (default 0.001)
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/probe.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/solver.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -14,8 +14,8 @@
 // Usage: bench_paper_tables [table...]   (default: 1 2 3 4)
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/compare.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/compare.h"
+#include "radiosity/solver/solver.h"
 
 #include <chrono>
 #include <cstdio>

@@ -13,7 +13,7 @@
 #include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/solver.h"
+#include "radiosity/solver/solver.h"
 
 #include <tbb/info.h>
 

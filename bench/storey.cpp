@@ -20,8 +20,8 @@
 #include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/solver.h"
-#include "radiosity/visibility.h"
+#include "radiosity/solver/solver.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

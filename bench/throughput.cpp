@@ -18,7 +18,7 @@
 #include "bench/median.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/solver.h"
+#include "radiosity/solver/solver.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>

@@ -13,8 +13,8 @@
 // Run it from build/bench (the reference cache goes there).
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/probe.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/solver.h"
 
 #include <chrono>
 #include <cmath>

@@ -18,7 +18,7 @@
 namespace dynrad {
 
 struct VertexValues {
-  std::string name = "radiosity";  // prefix of the three linear float properties
+  std::string name = "value";  // prefix of the three linear float properties (value_r, value_g, value_b)
   std::vector<Rgb> linear;
   std::vector<std::array<std::uint8_t, 3>> display;
   std::vector<float> quality;

@@ -1,6 +1,6 @@
 // Openings: the holes of a model that light from outside comes in through (a window
 // hole, a door, the missing ceiling of a box open at the top, the inner outline of a
-// window's reveal). Daylight samples the sky through them (radiosity/daylight.h): a
+// window's reveal). Daylight samples the sky through them (radiosity/sources/daylight.h): a
 // point close beside a small opening sees it in a sliver of directions that a fixed set
 // of directions over the whole hemisphere can miss.
 #pragma once

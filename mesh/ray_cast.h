@@ -2,7 +2,7 @@
 // the front of a surface sees (mesh/hidden.cpp). The points are centred on their box and
 // scaled to a unit diagonal before Embree's single-precision conversion, so a model in
 // millimetres far from the origin keeps the same relative precision. (The solver's
-// occlusion queries, with their offsets and ray streams, are radiosity/visibility.h.)
+// occlusion queries, with their offsets and ray streams, are radiosity/transfer/visibility.h.)
 #pragma once
 
 #include "mesh/types.h"

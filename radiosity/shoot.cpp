@@ -50,9 +50,9 @@
 // paper's dynamic shoots to a patch and then to its subpatches); adaptive's interior
 // elements only route the walk to the leaves and are not counted.
 // patch_element_transfers counts those below patch level.
-#include "radiosity/solver.h"
+#include "radiosity/solver/solver.h"
 
-#include "radiosity/parallel.h"
+#include "radiosity/transfer/parallel.h"
 
 #include <tbb/task_group.h>
 

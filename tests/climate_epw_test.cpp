@@ -202,7 +202,7 @@ TEST(Epw, OvercastWithoutIlluminanceGivesMissingIlluminances) {
 }
 
 TEST(Epw, OvercastZenithLuminanceIsTheCieOvercastSkys) {
-  // CIE overcast sky: horizontal illuminance 7 pi Lz / 9 (radiosity/sky.h). From 9999
+  // CIE overcast sky: horizontal illuminance 7 pi Lz / 9 (radiosity/sources/sky.h). From 9999
   // cd/m2 (about 24,400 lx) the field can only say "missing".
   SyntheticYear options;
   options.sky = SyntheticYear::Sky::overcast;

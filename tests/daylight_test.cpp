@@ -1,14 +1,14 @@
-// Daylight (radiosity/sky.h, daylight.h): sky models against their closed forms, the
+// Daylight (radiosity/sources/sky.h, daylight.h): sky models against their closed forms, the
 // sun's position against published ones, the sky through a roof opening against
 // pi L F, a sun beam through a window where the geometry puts it, and glazing's
 // transmittance scaling the light inside.
 #include "mesh/error.h"
 #include "mesh/load.h"
-#include "radiosity/daylight.h"
-#include "radiosity/glass.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/sky.h"
-#include "radiosity/visibility.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/sources/glass.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/sources/sky.h"
+#include "radiosity/transfer/visibility.h"
 #include "scene_builder.h"
 #include "test_support.h"
 

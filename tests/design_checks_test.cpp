@@ -5,9 +5,9 @@
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/light_scenes.h"
 #include "radiosity/design/room_checks.h"
-#include "radiosity/grid.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/luminaire.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/sources/luminaire.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -99,7 +99,7 @@ TEST(DesignCli, LightSceneEqualsASolveOfTheSameDimming) {
   for (auto& l : scene["luminaires"])
     if (l["group"] == "day") {
       ASSERT_FALSE(l.contains("lumens"));
-      l["lumens"] = 2550.8859005908103 * level;  // samples/downlight.ies's flux (radiosity/photometry.h)
+      l["lumens"] = 2550.8859005908103 * level;  // samples/downlight.ies's flux (radiosity/sources/photometry.h)
     }
   const std::string without = dir.write("without.json", scene.dump());
   for (const auto& [file, name] : {std::pair{with, "a"}, std::pair{without, "b"}}) {

@@ -5,9 +5,9 @@
 // the defaults stop by, so it must not promise more than the solve delivers.
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/probe.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -379,7 +379,7 @@ TEST(ErrorEstimate, PerVertexEstimateBoundsEveryVertexOfAFurnace) {
 // above (its direct light is even over the floor to within 1.5%), and a small black
 // block 0.3 m above the centroid of one floor triangle, which puts that centroid in
 // full shadow while the triangle's corners are lit. The surplus cannot see it (no leaf
-// has a parent); the direct check does (radiosity/direct_gap.cpp).
+// has a parent); the direct check does (radiosity/solver/direct_gap.cpp).
 std::string write_shadow_inside_an_element(test::TempDir& dir, bool block) {
   dir.write("shadow.mtl",
             "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\nnewmtl block\nKd 0 0 0\n");

@@ -2,7 +2,7 @@
 #include "mesh/error.h"
 #include "mesh/export.h"
 #include "mesh/load.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/tonemap.h"
 #include "test_support.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>

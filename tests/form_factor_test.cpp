@@ -1,8 +1,8 @@
 // Form factors against closed forms (Cohen & Wallace 1993), numerical integration,
 // reciprocity; and visibility with occluders through Embree.
 #include "mesh/load.h"
-#include "radiosity/form_factor.h"
-#include "radiosity/visibility.h"
+#include "radiosity/transfer/form_factor.h"
+#include "radiosity/transfer/visibility.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

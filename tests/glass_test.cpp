@@ -1,5 +1,5 @@
-// Glass whose transmittance falls with the angle of incidence (radiosity/glass.h).
-#include "radiosity/glass.h"
+// Glass whose transmittance falls with the angle of incidence (radiosity/sources/glass.h).
+#include "radiosity/sources/glass.h"
 
 #include <gtest/gtest.h>
 

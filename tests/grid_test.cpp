@@ -1,11 +1,11 @@
-// Calculation grids (radiosity/grid.h) against closed forms and hand-computed figures.
+// Calculation grids (radiosity/analysis/grid.h) against closed forms and hand-computed figures.
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/grid.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/probe.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
 #include "scene_builder.h"
 #include "test_support.h"
 

@@ -3,8 +3,8 @@
 // floor cut around it, for every method; hidden parts take no light.
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/probe.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/solver.h"
 #include "scene_builder.h"
 #include "test_support.h"
 

@@ -3,11 +3,11 @@
 // points the test picks, against formulas evaluated here.
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/probe.h"
-#include "radiosity/settings.h"
-#include "radiosity/shadow_outlines.h"
-#include "radiosity/solver.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/sources/shadow_outlines.h"
+#include "radiosity/solver/solver.h"
 #include "scene_builder.h"
 #include "test_support.h"
 
@@ -268,7 +268,7 @@ TEST(Luminaire, PlateCastsAnUmbraWithNoDirectLight) {
   EXPECT_GT(lit_points, 500);
 }
 
-// Discontinuity meshing (radiosity/shadow_outlines.h): a square plate 0.5 m above the
+// Discontinuity meshing (radiosity/sources/shadow_outlines.h): a square plate 0.5 m above the
 // floor, under a point source 2 m up and off its centre. The shadow's outline is the
 // plate's top outline projected from the source. Across each of its four sides, the
 // lit mesh's illuminance falls through half the closed form within 1 mm of the

@@ -1,5 +1,5 @@
 // The refinement oracles' scale-free quantities on hand-made corner values.
-#include "radiosity/oracle.h"
+#include "radiosity/solver/oracle.h"
 
 #include <gtest/gtest.h>
 

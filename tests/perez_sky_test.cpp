@@ -1,12 +1,12 @@
-// The Perez all-weather sky and luminous efficacy (radiosity/climate/perez.h): the
+// The Perez all-weather sky and luminous efficacy (radiosity/sources/perez.h): the
 // tables' arithmetic against values worked by hand, the sky's clearness and brightness
 // for known hours, the forms where they coincide with CIE skies, the scaling to the
 // hour's diffuse illuminance, the safeguards, and the "perez" sky of a scene file.
 #include "mesh/error.h"
-#include "radiosity/climate/perez.h"
-#include "radiosity/daylight.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/sky.h"
+#include "radiosity/sources/perez.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/sources/sky.h"
 #include "test_support.h"
 
 #include <fmt/format.h>

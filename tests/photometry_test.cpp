@@ -1,8 +1,8 @@
-// IES LM-63 and EULUMDAT readers (radiosity/photometry.h): closed-form fluxes, the
+// IES LM-63 and EULUMDAT readers (radiosity/sources/photometry.h): closed-form fluxes, the
 // symmetries of both formats giving the same distribution, interpolation that is exact
 // at the file's angles and makes no new extremes, and every kind of bad file refused
 // with its name, line and what to do. Every file is written here.
-#include "radiosity/photometry.h"
+#include "radiosity/sources/photometry.h"
 
 #include "mesh/error.h"
 #include "test_support.h"

@@ -3,8 +3,8 @@
 #include "mesh/cleanup.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/probe.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/probe.h"
+#include "radiosity/solver/solver.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

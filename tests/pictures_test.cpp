@@ -5,8 +5,8 @@
 // a vertex well outside the range of the ring of vertices around it.
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

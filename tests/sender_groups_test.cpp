@@ -4,8 +4,8 @@
 #include "mesh/load.h"
 #include "mesh/plane_groups.h"
 #include "mesh/refinement.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
 #include "scene_builder.h"
 
 #include <gtest/gtest.h>

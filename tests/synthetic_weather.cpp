@@ -1,6 +1,6 @@
 #include "synthetic_weather.h"
 
-#include "radiosity/sky.h"
+#include "radiosity/sources/sky.h"
 
 #include <unistd.h>
 

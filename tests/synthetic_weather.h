@@ -2,7 +2,7 @@
 // or an overcast sky at a site, written as a weather file would be, deterministic.
 //
 // Each hour's sun is the one at its middle (hour h: (h - 0.5):00 local standard time,
-// radiosity/sky.h's sun_position), zenith angle Z; below the horizon every value is 0.
+// radiosity/sources/sky.h's sun_position), zenith angle Z; below the horizon every value is 0.
 //   clear: direct normal E_n = 1353 * 0.7^(AM^0.678) W/m2 (Meinel and Meinel 1976), the
 //     air mass AM = 1 / (cos Z + 0.50572 (96.07995 - Z)^-1.6364) (Kasten and Young
 //     1989); diffuse horizontal 0.15 E_n (a clear sky gives 10-20% of the direct beam).

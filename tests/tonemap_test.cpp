@@ -1,4 +1,4 @@
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <gtest/gtest.h>
 

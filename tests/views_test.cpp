@@ -1,11 +1,11 @@
-// Views (radiosity/views.h, rooms.h, render.h): storeys and rooms found from geometry,
+// Views (radiosity/analysis/views.h, rooms.h, render.h): storeys and rooms found from geometry,
 // plans cut through walls, declared cameras pointing where they say, a preview that is
 // never black inside a closed building, and the HTML report's contents.
 #include "mesh/error.h"
 #include "mesh/io_util.h"
-#include "radiosity/render.h"
-#include "radiosity/rooms.h"
-#include "radiosity/views.h"
+#include "radiosity/analysis/render.h"
+#include "radiosity/analysis/rooms.h"
+#include "radiosity/analysis/views.h"
 #include "test_support.h"
 
 #include <boost/archive/iterators/base64_from_binary.hpp>

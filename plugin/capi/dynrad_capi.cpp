@@ -8,9 +8,9 @@
 #include "mesh/import.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <cmath>
 #include <cstring>
@@ -38,7 +38,7 @@ struct dynrad_options {
   dynrad::rad::SolveOptions solve;
   dynrad::rad::RefineSettings refine;
   // What the caller set of the settings `dynrad solve` chooses from the model
-  // (radiosity/settings.h); the rest is chosen at the solve.
+  // (radiosity/solver/settings.h); the rest is chosen at the solve.
   dynrad::rad::SettingsRequest request;
   double exposure = 0;    // 0: automatic
   bool simplify = true;   // merge flat regions before patching, as `dynrad solve`

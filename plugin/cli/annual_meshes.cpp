@@ -5,7 +5,7 @@
 #include "mesh/export.h"
 #include "mesh/scene_mesh.h"
 #include "plugin/cli/npy.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

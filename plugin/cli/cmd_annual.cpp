@@ -25,11 +25,11 @@
 #include "plugin/cli/png.h"
 #include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
-#include "radiosity/daylight.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/lit_scene.h"
-#include "radiosity/settings.h"
-#include "radiosity/solver.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/analysis/lit_scene.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -6,7 +6,7 @@
 #include "mesh/load.h"
 #include "mesh/vertex_split.h"
 #include "plugin/cli/commands.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <spdlog/spdlog.h>
 

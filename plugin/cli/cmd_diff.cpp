@@ -8,7 +8,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/export.h"
 #include "plugin/cli/commands.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

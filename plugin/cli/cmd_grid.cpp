@@ -1,7 +1,7 @@
 // `dynrad grid LIT.ply --model SCENE`: calculation grids over a lit result, without
 // solving again. The grids are the scene file's ("grids"), or one given by --grid. The
 // direct light comes from the model (its luminaires, its emitting faces), the rest from
-// the lit PLY's radiosity (radiosity/grid.h). With --views or --html, also the views
+// the lit PLY's radiosity (radiosity/analysis/grid.h). With --views or --html, also the views
 // (the scene's cameras, plans and rooms) and the one-file report; with --pdf, the
 // printable report (plugin/cli/pdf_report.h).
 #include "mesh/atomic_file.h"
@@ -14,13 +14,13 @@
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/lit_mesh.h"
-#include "radiosity/daylight.h"
+#include "radiosity/sources/daylight.h"
 #include "radiosity/design/light_scenes.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/solve_types.h"
-#include "radiosity/tonemap.h"
-#include "radiosity/views.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/solve_types.h"
+#include "radiosity/analysis/tonemap.h"
+#include "radiosity/analysis/views.h"
 
 #include <spdlog/spdlog.h>
 

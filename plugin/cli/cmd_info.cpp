@@ -3,11 +3,11 @@
 #include "mesh/load.h"
 #include "mesh/refinement.h"
 #include "plugin/cli/commands.h"
-#include "radiosity/daylight.h"
+#include "radiosity/sources/daylight.h"
 #include "radiosity/design/glare.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/settings.h"
-#include "radiosity/visibility.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -137,7 +137,7 @@ int run_info(const InfoOptions& options) {
   const SimplifyReport& s = scene.simplify;
   // What the cleaned model itself holds, before simplification and patching.
   const std::size_t model_vertices = s.vertices_before, model_faces = s.faces_before;
-  // The patch size `dynrad solve` would choose with no options (radiosity/settings.h).
+  // The patch size `dynrad solve` would choose with no options (radiosity/solver/settings.h).
   const double patch_size =
       options.patch_size > 0 ? options.patch_size : rad::choose_settings(mesh, rad::Quality::normal).patch_size;
   const PatchingReport patching = make_patches(mesh, patch_size);

@@ -26,7 +26,7 @@
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/lit_mesh.h"
-#include "radiosity/visibility.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

@@ -18,17 +18,17 @@
 #include "plugin/cli/pdf_report.h"
 #include "plugin/cli/view_output.h"
 #include "plugin/cli/png.h"
-#include "radiosity/daylight.h"
+#include "radiosity/sources/daylight.h"
 #include "radiosity/design/light_scenes.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/render.h"
-#include "radiosity/views.h"
-#include "radiosity/visibility.h"
-#include "radiosity/settings.h"
-#include "radiosity/shadow_outlines.h"
-#include "radiosity/solver.h"
-#include "radiosity/tonemap.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/analysis/render.h"
+#include "radiosity/analysis/views.h"
+#include "radiosity/transfer/visibility.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/sources/shadow_outlines.h"
+#include "radiosity/solver/solver.h"
+#include "radiosity/analysis/tonemap.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -59,7 +59,7 @@ struct SolveCliOptions {
   bool views = false;  // also the automatic views (plans, rooms)
   std::string method = "dynamic";
   std::string quality = "normal";
-  double patch_size = 0;  // 0: chosen from the model (radiosity/settings.h)
+  double patch_size = 0;  // 0: chosen from the model (radiosity/solver/settings.h)
   int max_level = -1;     // -1: the quality's
   double converge = -1;   // -1: stop by the quality's error target (dynamic), or at 1% unshot
   bool ambient = true;
@@ -69,8 +69,8 @@ struct SolveCliOptions {
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   bool clusters = true;
-  bool shadow_outlines = true;  // hard shadows' outlines as mesh edges (radiosity/shadow_outlines.h)
-  double overshoot = -1;  // -1: the method's (radiosity/settings.h)
+  bool shadow_outlines = true;  // hard shadows' outlines as mesh edges (radiosity/sources/shadow_outlines.h)
+  double overshoot = -1;  // -1: the method's (radiosity/solver/settings.h)
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
   bool ascii = false;
@@ -210,7 +210,7 @@ int run_solve(SolveCliOptions& options) {
     const rad::Visibility visibility(mesh);
     for (const std::string& w : rad::luminaire_warnings(visibility, luminaires)) spdlog::warn("{}", w);
   }
-  // Settings from the model and the quality (radiosity/settings.h); every option given
+  // Settings from the model and the quality (radiosity/solver/settings.h); every option given
   // overrides.
   rad::SettingsRequest request;
   request.quality = quality;
@@ -270,13 +270,13 @@ int run_solve(SolveCliOptions& options) {
   rad::Solver::Output result = solver.output();
   const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   // Grids, views, the preview, the glTF's cameras and the designer's checks gather from
-  // or render the lit mesh (radiosity/lit_scene.h).
+  // or render the lit mesh (radiosity/analysis/lit_scene.h).
   std::unique_ptr<rad::LitScene> scene_lit;
   if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb || design ||
       !light_scenes.empty())
     scene_lit = std::make_unique<rad::LitScene>(
         rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
-  // Grids: illuminance in mid-air, gathered from the solution (radiosity/grid.h). With
+  // Grids: illuminance in mid-air, gathered from the solution (radiosity/analysis/grid.h). With
   // light scenes, from the channelled solve: each scene from the channels, and the grids
   // themselves from their luminance, the scene with every group at full output.
   const std::vector<rad::GridResult> gathered =

@@ -6,7 +6,7 @@
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/glare.h"
 #include "radiosity/design/room_checks.h"
-#include "radiosity/scene_json.h"
+#include "radiosity/sources/scene_json.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

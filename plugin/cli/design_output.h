@@ -5,8 +5,8 @@
 #pragma once
 
 #include "radiosity/design/light_scenes.h"
-#include "radiosity/grid.h"
-#include "radiosity/lit_scene.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/lit_scene.h"
 
 #include <nlohmann/json.hpp>
 

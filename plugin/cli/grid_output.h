@@ -3,7 +3,7 @@
 // (a false-colour plan), shared by `solve` and `grid`.
 #pragma once
 
-#include "radiosity/grid.h"
+#include "radiosity/analysis/grid.h"
 
 #include <nlohmann/json.hpp>
 

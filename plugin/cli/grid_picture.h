@@ -4,8 +4,8 @@
 #pragma once
 
 #include "plugin/cli/text.h"
-#include "radiosity/grid.h"
-#include "radiosity/render.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/render.h"
 
 #include <string>
 

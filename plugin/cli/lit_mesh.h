@@ -3,7 +3,7 @@
 #pragma once
 
 #include "mesh/scene_mesh.h"
-#include "radiosity/visibility.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <array>
 #include <cstdint>

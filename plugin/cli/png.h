@@ -2,7 +2,7 @@
 // to a file atomically.
 #pragma once
 
-#include "radiosity/render.h"
+#include "radiosity/analysis/render.h"
 
 #include <string>
 

@@ -2,7 +2,7 @@
 // fonts-dejavu-core), for the figures and legends of report pictures.
 #pragma once
 
-#include "radiosity/render.h"
+#include "radiosity/analysis/render.h"
 
 #include <array>
 #include <cstdint>

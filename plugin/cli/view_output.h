@@ -4,7 +4,7 @@
 #pragma once
 
 #include "mesh/export.h"
-#include "radiosity/views.h"
+#include "radiosity/analysis/views.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,8 +2,8 @@
 #include "radiosity/climate/annual.h"
 
 #include "mesh/error.h"
-#include "radiosity/climate/perez.h"
-#include "radiosity/sky.h"
+#include "radiosity/sources/perez.h"
+#include "radiosity/sources/sky.h"
 
 #include <tbb/parallel_for.h>
 

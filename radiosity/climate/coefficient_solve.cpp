@@ -2,10 +2,10 @@
 #include "radiosity/climate/coefficient_solve.h"
 
 #include "mesh/scene_mesh.h"
-#include "radiosity/daylight.h"
-#include "radiosity/lit_scene.h"
-#include "radiosity/random.h"
-#include "radiosity/visibility.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/analysis/lit_scene.h"
+#include "radiosity/transfer/random.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <algorithm>
 #include <cmath>

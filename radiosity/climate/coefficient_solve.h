@@ -29,9 +29,9 @@
 
 #include "radiosity/climate/daylight_coefficients.h"
 #include "radiosity/climate/sky_patches.h"
-#include "radiosity/grid.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/solver.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/solver.h"
 
 #include <array>
 #include <memory>

@@ -1,9 +1,9 @@
 // Daylight coefficients at points (see daylight_coefficients.h).
 #include "radiosity/climate/daylight_coefficients.h"
 
-#include "radiosity/daylight.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/visibility.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/transfer/visibility.h"
 
 namespace dynrad::rad {
 

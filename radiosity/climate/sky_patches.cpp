@@ -1,7 +1,7 @@
 // Tregenza's and Reinhart's sky patches (see sky_patches.h).
 #include "radiosity/climate/sky_patches.h"
 
-#include "radiosity/sky.h"
+#include "radiosity/sources/sky.h"
 
 #include <algorithm>
 #include <cmath>

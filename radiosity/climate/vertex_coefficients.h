@@ -10,7 +10,7 @@
 #pragma once
 
 #include "radiosity/climate/coefficient_solve.h"
-#include "radiosity/solver.h"
+#include "radiosity/solver/solver.h"
 
 #include <cstddef>
 #include <vector>

@@ -1,9 +1,9 @@
 // EN 1838 escape-route and open-area checks (see emergency.h).
 #include "radiosity/design/emergency.h"
 
-#include "radiosity/grid.h"
-#include "radiosity/random.h"
-#include "radiosity/rooms.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/transfer/random.h"
+#include "radiosity/analysis/rooms.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>

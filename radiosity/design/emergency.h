@@ -14,7 +14,7 @@
 #pragma once
 
 #include "radiosity/design/check.h"
-#include "radiosity/lit_scene.h"
+#include "radiosity/analysis/lit_scene.h"
 
 #include <array>
 #include <string>

@@ -10,7 +10,7 @@
 // "route1", "area1", ... and must be unique. Unknown keys are errors.
 #include "mesh/error.h"
 #include "radiosity/design/emergency.h"
-#include "radiosity/scene_json.h"
+#include "radiosity/sources/scene_json.h"
 
 #include <nlohmann/json.hpp>
 

@@ -20,7 +20,7 @@
 // to, not the same as, a table computed with CIE 190's transfer factors.
 #include "radiosity/design/glare.h"
 
-#include "radiosity/random.h"
+#include "radiosity/transfer/random.h"
 
 #include <fmt/format.h>
 

@@ -23,9 +23,9 @@
 // outside these ranges carry a note; a UGR below 10 is reported as "< 10".
 #pragma once
 
-#include "radiosity/grid.h"
-#include "radiosity/lit_scene.h"
-#include "radiosity/photometry.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/lit_scene.h"
+#include "radiosity/sources/photometry.h"
 
 #include <string>
 #include <vector>

@@ -2,7 +2,7 @@
 #include "radiosity/design/light_scenes.h"
 
 #include "mesh/error.h"
-#include "radiosity/scene_json.h"
+#include "radiosity/sources/scene_json.h"
 
 #include <nlohmann/json.hpp>
 

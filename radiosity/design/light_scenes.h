@@ -16,8 +16,8 @@
 // "night": 1}}, ...], levels from 0 to 1; a group a scene does not list stays at 1.
 #pragma once
 
-#include "radiosity/grid.h"
-#include "radiosity/luminaire.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/sources/luminaire.h"
 
 #include <array>
 #include <string>

@@ -13,7 +13,7 @@
 // Unknown keys are errors.
 #include "mesh/error.h"
 #include "radiosity/design/glare.h"
-#include "radiosity/scene_json.h"
+#include "radiosity/sources/scene_json.h"
 
 #include <nlohmann/json.hpp>
 

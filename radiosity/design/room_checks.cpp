@@ -1,8 +1,8 @@
 // EN 12464-1 checks per room (see room_checks.h).
 #include "radiosity/design/room_checks.h"
 
-#include "radiosity/random.h"
-#include "radiosity/rooms.h"
+#include "radiosity/transfer/random.h"
+#include "radiosity/analysis/rooms.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>

@@ -23,7 +23,7 @@
 #pragma once
 
 #include "radiosity/design/check.h"
-#include "radiosity/grid.h"
+#include "radiosity/analysis/grid.h"
 
 #include <string>
 #include <vector>

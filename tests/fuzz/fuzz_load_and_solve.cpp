@@ -15,15 +15,15 @@
 #include "mesh/error.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
-#include "radiosity/daylight.h"
+#include "radiosity/sources/daylight.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/glare.h"
 #include "radiosity/design/light_scenes.h"
-#include "radiosity/grid_scene.h"
-#include "radiosity/views.h"
-#include "radiosity/luminaire.h"
-#include "radiosity/solver.h"
-#include "radiosity/visibility.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/analysis/views.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/solver.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <cmath>
 #include <cstdint>

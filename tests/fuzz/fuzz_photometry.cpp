@@ -6,7 +6,7 @@
 // or a read that succeeds with a distribution that is not one: a NaN, negative or
 // infinite intensity or flux, angles out of order, a table of the wrong size.
 #include "mesh/error.h"
-#include "radiosity/photometry.h"
+#include "radiosity/sources/photometry.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,0 +1,868 @@
+// The radiosity solver: progressive refinement (Cohen et al. 1988) with no refinement,
+// with Adaptive Subdivision (Cohen et al. 1986; the paper's Figure 2) or with Dynamic
+// Subdivision (Dubuis & Bieri; Figures 5 and 6). The loop is in shoot.cpp, the oracles
+// in oracle.cpp; this class holds the state they share.
+//
+// State. Every element of the hierarchy, interior ones included, keeps the cumulated
+// radiosity at its three corners. New elements interpolate their parent's corner values
+// (linear across the flat parent, so a midpoint gets the mean of its edge's ends).
+// Patches keep their unshot radiosity (its mean; each shot gives it a shape from a
+// quarter grid of points on the patch, see SenderShape). Receivers are the element
+// corners; a corner's form factor to the sender is Lambert's closed form at the corner times the
+// fraction of rays that reach the sender, evaluated once per shot for each vertex and
+// patch.
+#pragma once
+
+#include "mesh/face_clusters.h"
+#include "mesh/plane_groups.h"
+#include "mesh/refinement.h"
+#include "mesh/sphere_index.h"
+#include "mesh/vertex_split.h"
+#include "radiosity/transfer/form_factor.h"
+#include "radiosity/transfer/grow_array.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/oracle.h"
+#include "radiosity/transfer/process_memory.h"
+#include "radiosity/transfer/receiver_tree.h"
+#include "radiosity/solver/solve_types.h"
+#include "radiosity/transfer/vertex_plane_map.h"
+#include "radiosity/transfer/visibility.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace dynrad::rad {
+
+enum class Method { progressive, adaptive, dynamic };
+// "progressive", "adaptive", "dynamic"; throws std::invalid_argument otherwise.
+Method parse_method(const std::string& name);
+const char* method_name(Method method);
+
+struct RefineSettings {
+  Method method = Method::progressive;
+  int max_level = 3;                // paper levels (1 -> 4 splits) below a patch
+  double adaptive_threshold = 0.25; // Figure 3's threshold on the cumulated gradient
+  OracleThresholds dynamic;         // Figure 6's three thresholds
+  // Dynamic: where new elements' cumulated radiosity comes from. "interpolate" (the
+  // default) is linear across the parent from its corners; "constant" gives every
+  // corner the parent's mean; "gather" recalculates them from every earlier sender as
+  // adaptive does (for measurements: it costs a transfer per sender).
+  enum class NewElements { interpolate, constant, gather } new_elements = NewElements::interpolate;
+  // Limits (0: none). When one is reached, the solve goes on without further
+  // refinement and the report says why (SolveReport::refinement_stopped). The element
+  // limit may be passed by the closure of the split that reaches it (a few elements).
+  std::size_t max_elements = 0;
+  std::size_t memory_budget = 0;  // bytes of resident memory of the whole process
+  // Dynamic: push a transfer down to the elements below where it stopped along the
+  // quadratic through its values at the stopping element's corners and edge midpoints
+  // (three more closed forms where elements exist below), instead of linearly from the
+  // corners as the paper does. Linear push-down of a transfer that bends (near its
+  // sender) overshoots at every vertex below, always on the same side, and many such
+  // transfers add up: in a furnace the worst vertex was 17% off (bench/README.md).
+  bool quadratic_pushdown = true;
+  // Dynamic: a new vertex starts from its parent's values (a line across the element
+  // it was split from) plus, for every patch within one radius of that element that
+  // has shot, what that patch's light bends away from the line: rho times the patch's
+  // shot radiosity times its F at the vertex minus F interpolated from the element's
+  // corners (closed forms times the share of 4 rays to the patch that arrive: a patch
+  // behind a partition bends nothing). Near a junction F is far from linear (on a wall 2 cm
+  // above a floor, a floor patch a little way off is seen only at grazing angles from
+  // the foot and well from 4 cm up), and a vertex born between a shot from there and the
+  // foot's own patch kept the difference for good: the Cornell demo's dark vertices at
+  // the short block's foot (tests/pictures_test.cpp).
+  bool near_field_start = true;
+  // Dynamic, push-down oracle: where elements exist below q, decide by the push-down
+  // error alone (OracleInputs::refined).
+  bool refined_pushdown = true;
+  // Dynamic: paper levels of refinement allowed beyond max_level where a shadow's edge
+  // crosses an element (its corners see fractions of the sender that differ by more
+  // than a quarter): shadows are where the light changes fastest, and interpolating
+  // across one smears it over the element.
+  int shadow_levels = 1;
+  // Dynamic, shots from luminaires: paper levels allowed beyond max_level, and the
+  // push-down error allowed, as a fraction of OracleThresholds::pushdown. A point
+  // source's pool of light bends on the scale of its height, not of the patches. A
+  // 40 m floor under a 100 cd source 2 m up (tests/luminaire_test.cpp), normal
+  // quality: with the patches' own levels and error, 2.3% off the closed form at
+  // worst of 50 points; with 2 more levels and a quarter of the error, 0.87% (the
+  // levels bound); with 3 and a quarter, 0.29% (64,000 elements).
+  int luminaire_levels = 3;
+  double luminaire_pushdown = 0.25;
+  // Dynamic: the first shot of a primary emitting patch (Solver's direct sources: the
+  // emitting patches when at most 16 hold 90% of the emitted power, a small area light
+  // such as the 1990 room's 0.5 m source) refines as a luminaire's shot does, with
+  // luminaire_pushdown and primary_levels: its pool of light bends on the scale of its
+  // height, not of the patches. On the 1990 room at the defaults the floor below the
+  // source was 1.6% dark between exact vertices 0.6 m apart (bench/README.md). Later
+  // shots of the same patch (light it reflects) are a patch's.
+  bool sharp_primary_patches = true;
+  // Levels beyond max_level for that shot: fewer than a luminaire's, since an area
+  // light's penumbrae are decided by rays. With 3, the Cornell demo's floor by the red
+  // wall kept a vertex 4.5% off a ring spanning 3.9% at two of five seeds
+  // (tests/pictures_test.cpp; 26,000 vertices); with 2, none beyond 2.9% (12,400).
+  int primary_levels = 2;
+  // Dynamic, shots from luminaires onto detail (Solver's Patch::detail: facets smaller
+  // than the patch size squared, such as frames, radiators, skirting boards and chair
+  // parts): paper levels beyond max_level, with the patches' own push-down error and no
+  // shadow levels. What the eye and the work plane see are the room's walls, floors,
+  // ceilings and tables. Measured with the office building of samples/make_office.py
+  // (one storey, its 36 luminaire shots) and the IFC house (solve seconds): detail
+  // treated as everything else, the house 23.7 s; 3 levels and the patches' error, the
+  // office 4.68 M elements and 2.84 GB, the house 24.4 s; 2 levels, 3.97 M, 2.47 GB and
+  // 24.0 s; none, 3.42 M, 2.2 GB and 25.9 s (the house then needs 4,619 shots instead of
+  // 4,070: the error estimate counts the coarser detail's error).
+  int detail_luminaire_levels = 2;
+  // The area of a whole patch (model units squared; 0: not used): no bisection the
+  // oracle asks for makes an element smaller than such a patch's smallest at the levels
+  // allowed. A patch smaller than that (a sliver along an imprinted line, a frame's
+  // side) then refines less or not at all: the levels count from the patch size, not
+  // from each patch. `dynrad solve` sets it to an eighth of the patch size squared:
+  // bisecting to the patch size leaves right triangles whose longest edge lies between
+  // the patch size and 1/sqrt(2) of it, so a whole patch has at least that area.
+  double patch_area = 0;
+};
+
+// How a point's view of a sender was decided by rays: not at all (no rays: the sender
+// lies behind the point, or its light is decided otherwise: luminaires, clusters), by
+// the first few rays all arriving or all blocked, or by the full count (mixed).
+enum class RayVerdict : std::uint8_t { none, seen, hidden, mixed };
+// How many rays a point form factor casts: `full` casts the first pass and the full
+// count whatever the first pass finds (the same first rays, so a forced count only
+// adds to them); `verdict`, when given, receives how the visible part was decided.
+struct RayPlan {
+  bool full = false;
+  RayVerdict* verdict = nullptr;
+};
+
+class Solver {
+ public:
+  // Refines `scene` through `hierarchy` as it goes; both must outlive the solver.
+  // Luminaires (luminaire.h) shoot first, each once, in the order given, into the same
+  // walk as the patches: their "form factor" at a receiver is the illuminance they give
+  // it, I cos(theta) / d^2 times the fraction of the luminaire it sees, per unit of
+  // their colour. Throws std::invalid_argument when nothing emits.
+  Solver(SceneMesh& scene, ElementHierarchy& hierarchy, SolveOptions options, RefineSettings refine = {},
+         std::vector<Luminaire> luminaires = {});
+  ~Solver();
+
+  SolveReport run();
+  bool shoot_once();  // one shot from the brightest patch; false when nothing is left
+
+  // Per output vertex (see mesh/vertex_split.h) of the current mesh: the mean of the
+  // leaf corner values that meet there, weighted by the leaves' areas. (Unweighted, a
+  // sliver that a shot culled as a negligible receiver, and so holds less at a corner
+  // it shares with large lit elements, pulled the vertex down as much as they did: the
+  // 1990 room's largest error fell from 3.34% to 2.77% with the weights.)
+  struct Output {
+    VertexSplit split;
+    std::vector<Rgb> radiosity;
+    std::vector<char> emitter;  // the vertex belongs to an emitting surface
+    // Light arriving (irradiance; illuminance in photometric units), (B - emission) /
+    // reflectance per channel, averaged like `radiosity`. Where a channel's reflectance
+    // is 0 it is 0: see SolveOptions::min_reflectance.
+    std::vector<Rgb> irradiance;
+    // The estimated relative error of `radiosity` at the vertex (luminance), the terms of
+    // estimate_error() taken locally: the unshot light's share of the vertex's value, and
+    // half the largest hierarchical surplus of the leaves that meet there. 0 where the
+    // surface reflects nothing (its value is its emission, exact).
+    std::vector<float> error;
+  };
+  Output output() { return output(options_.ambient_display); }
+  Output output(bool ambient_display);  // with or without the ambient term, whatever the options
+
+  // The estimated mean relative error of what output() writes now: per leaf element,
+  // area-weighted, over surfaces that reflect, relative to their mean radiosity.
+  //   unshot: the light not yet shot reaches each element as its reflectance times
+  //     Cohen et al.'s ambient radiosity. Written without the ambient term, all of it
+  //     is missing (on the 1990 room at 2% unshot: 3.2% estimated, 3.3% measured);
+  //     with it (SolveOptions::ambient_display), a quarter of it is counted: the term
+  //     is right on average and wrong in its distribution, and on the 1990 room it
+  //     removes 80-90% of the unshot light's error (bench/README.md).
+  //   discretisation: at every leaf below a patch, the hierarchical surplus at the
+  //     corner its parent's split made: the leaf's value there minus the parent's
+  //     linear interpolation, halved: bisection halves the interpolation error (it
+  //     goes with the element's area), so what is left at the leaf is about the
+  //     surplus there, and the mean of a linear interpolation's error over an element
+  //     is about half its value at an edge's midpoint (2/3 along a parabola). Leaves
+  //     that are whole patches have no surplus: no refinement was asked for there.
+  //   shadows: per leaf, what two thirds of its direct gap (direct_gap.cpp) adds above
+  //     that (mesh_error() takes the larger): a shadow inside an element whose corners
+  //     are lit, which linear interpolation misses and the surplus does not show. The
+  //     solve stops by the other two (ErrorEstimate::stop_measure()).
+  // Measured against the path-traced reference in tests/error_estimate_test.cpp.
+  // Without `shadows` that part is left at 0 and not computed: the solve's looks stop by
+  // the other two (ErrorEstimate::stop_measure()), so only the last estimate needs it.
+  ErrorEstimate estimate_error(bool shadows = true);
+  // The part of the estimate that is the unshot light, per unit reflectance (see
+  // estimate_error()).
+  Rgb unshot_error_radiosity() const;
+  // An element's hierarchical surplus: at the corner its parent's split made, |value -
+  // the parent's linear interpolation| (luminance); 0 for a patch's root.
+  double surplus(ElementId e) const;
+  // A leaf's estimated mean error from its mesh: the larger of half its surplus and
+  // its direct gap (direct_gap.cpp) times kDirectGapWeight, both luminance.
+  double mesh_error(ElementId e) const;
+  const EnergyBalance& energy() const { return report_.energy; }
+  double unshot_fraction() const;
+  const SolveReport& report() const { return report_; }
+  // The sources as solved: daylight's flux (what reached the surfaces) filled in.
+  const std::vector<Luminaire>& luminaires() const { return luminaires_; }
+  // For benchmarks: see Visibility::record_rays (single thread only).
+  void record_rays(std::vector<RTCRay>* sink) { visibility_->record_rays(sink); }
+  // For benchmarks: see Visibility::time_calls.
+  void time_visibility(bool on) { visibility_->time_calls(on); }
+  double seconds_in_embree() const { return visibility_->seconds_in_embree(); }
+
+  // Coefficient channels (solver_coefficients.cpp): `count` values per patch carried
+  // beside the colours, each the light of one part of the sky (climate/
+  // daylight_coefficients.h), so that one solve gives the interreflection of every sky.
+  // Every transfer is linear, so each channel moves as the luminance does: a patch that
+  // shoots sends its channels' unshot with the same factors as its luminance, a
+  // receiver takes them with the same form factor and reflectance. The solve itself
+  // (which patch shoots, where the mesh refines, when to stop) is steered by the colours,
+  // whose sky is a sum of the channels' with positive weights, so that it holds every
+  // channel's light. The sky's first shot splits a receiver's light into channels by
+  // `sky_mix` over the receiver (climate/coefficient_solve.cpp samples a few points):
+  // for channel j, the light there per unit of channel j over the light of the
+  // steering sky, both direct (so that the channels' light sums to the steering sky's
+  // with the weights; CoefficientChannels::relative tells the channels that are light of
+  // their own instead). Materials must be grey, the only source one sky luminaire
+  // (throws std::invalid_argument otherwise).
+  struct CoefficientChannels {
+    std::size_t count = 0;
+    // Channels from `relative` on (when below count) are not shares of the steering
+    // sky's light but the light itself: sky_mix writes their irradiance per unit area,
+    // which a receiver takes once, whatever the steering sky brought it (a sun's
+    // light, with its sharp shadows, is not a share of the sky's on the same patch).
+    std::size_t relative = SIZE_MAX;
+    // Writes `count` values to `mix` for a receiving triangle (facing n; a point when its
+    // corners are one).
+    std::function<void(const std::array<Vec3d, 3>& surface, const Vec3d& n, float* mix)> sky_mix;
+  };
+  void carry_coefficients(CoefficientChannels channels);  // before run()
+  // Patch p's mean radiosity per channel, reflected light only (count values).
+  const float* patch_coefficients(std::uint32_t p) const { return coefficient_total_.data() + p * coefficients_.count; }
+  std::size_t coefficient_count() const { return coefficients_.count; }
+  // The absolute channels' (CoefficientChannels::relative on) part of
+  // patch_coefficients(p) that they brought straight from the sky's shot (count -
+  // relative values): a sun's direct light, reflected. The rest is interreflection.
+  const float* patch_direct_coefficients(std::uint32_t p) const {
+    return coefficient_direct_.data() + p * (coefficients_.count - absolute_from());
+  }
+  std::size_t absolute_from() const { return std::min(coefficients_.count, coefficients_.relative); }
+
+ private:
+  // Coefficient channels (see carry_coefficients; all empty when count is 0).
+  CoefficientChannels coefficients_;
+  std::vector<float> coefficient_unshot_;       // per patch, radiosity not yet shot
+  std::vector<float> coefficient_total_;        // per patch, radiosity received and reflected
+  std::vector<float> coefficient_direct_;       // per patch, the absolute channels' first booking
+  std::vector<float> coefficient_part_unshot_;  // per cluster part, power not yet shot
+  std::vector<float> coefficient_shot_;         // the current sender's shot (as current_shot_)
+  std::vector<float> coefficient_mix_;          // the sky's shot: per receiver in coefficient_slot_
+  std::vector<std::uint32_t> coefficient_slot_;  // per patch, then per part: its mix's slot (or ~0)
+  std::vector<char> coefficient_booked_;         // per slot: its absolute channels taken
+  // A patch sender: `factor` of its unshot channels into the shot (adding `weight` x
+  // that), 1 - factor left.
+  void shoot_coefficients(std::uint32_t p, double factor, double weight);
+  // The sky's shot: the mix of every receiver it reached (coefficient_slot_).
+  void mix_sky(const std::vector<ElementId>& terminals, const std::vector<double>& reach);
+  // What a receiver of the sky's shot takes per unit area: channel j of the mix at
+  // `slot` times `factor` (the steering sky's light there), to `out`.
+  // The absolute channels (CoefficientChannels::relative) are taken at the first
+  // booking of a slot only (coefficient_booked_).
+  void incident_coefficients(std::uint32_t slot, double factor, float* out);
+  // Books a patch's reception (see account_transfers): `incident` times `factor` per
+  // unit area.
+  // `from_sky`: the sky's shot (its absolute channels also go to coefficient_direct_).
+  void book_coefficients(std::uint32_t patch, const float* incident, float factor, bool from_sky);
+  void book_part_coefficients(std::uint32_t part, const float* incident, float factor, bool from_sky);
+  void book_direct(std::uint32_t patch, const float* incident, float reflected);
+  // A sign of life during a long shot (SolveOptions::on_busy): counts the receiving points
+  // computed and calls on_busy when 2 s have passed since the last call.
+  void beat();
+  std::atomic<std::size_t> shot_points_{0};
+  std::chrono::steady_clock::time_point shot_start_;
+  std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
+
+  // Sender ids: patches are 0 .. P - 1, luminaires P .. P + L - 1, clusters P + L ..
+  // P + L + C - 1.
+  bool is_luminaire(std::uint32_t id) const {
+    return id >= patches_.size() && id < patches_.size() + luminaires_.size();
+  }
+  const Luminaire& luminaire(std::uint32_t id) const { return luminaires_[id - patches_.size()]; }
+  bool is_cluster(std::uint32_t id) const { return id >= patches_.size() + luminaires_.size(); }
+  std::uint32_t cluster_sender(std::uint32_t cluster) const {
+    return static_cast<std::uint32_t>(patches_.size() + luminaires_.size()) + cluster;
+  }
+  std::uint32_t cluster_index(std::uint32_t id) const {
+    return id - static_cast<std::uint32_t>(patches_.size() + luminaires_.size());
+  }
+  // The flux a sky or sun luminaire sends onto the patches (see solver.cpp).
+  double daylight_flux(const Luminaire& l) const;
+  // Illuminance at x (normal n) from luminaire `id` per unit of its colour: see
+  // rad::luminaire_illuminance (rays: with the solver's visibility).
+  double luminaire_illuminance(const Vec3d& x, const Vec3d& n, std::uint32_t id, std::uint64_t seed, bool rays,
+                               double* unoccluded) const;
+  struct Patch {
+    // area and unshot first: the survey after each shot reads only these
+    double area = 0;
+    Rgb unshot;
+    std::array<Vec3d, 3> corners;
+    Vec3d normal;
+    Rgb reflectance, emission;
+    Rgb shot;  // radiosity shot so far, in total
+    double lost = -1, escaped = 0;  // see lost_fraction()
+    double rough_lost = -1;         // see rough_lost_fraction(), until `lost` is known
+    std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex
+    Vec3d centre;                   // centre and radius of a sphere around the patch
+    double radius = 0;
+    // Luminance at the nodes of the patch's quarter grid (triangle_nodes(); see
+    // shape_of()) that has been shot: the values there minus this are the shape of its
+    // unshot radiosity.
+    std::array<double, kTriangleNodes> shot_at_nodes{};
+    // A member of a face cluster: it sends nothing of its own (its reflected light goes
+    // to its part of the cluster) and is not refined.
+    bool clustered = false;
+    // On a facet (the patches that touch and lie in one plane) of less area than
+    // kDetailFacet whole patches (RefineSettings::patch_area): a frame's profile, a
+    // radiator's, a skirting board, a chair's seat. A luminaire refines it as any other
+    // sender does, without its extra levels, tighter error and shadow levels: what the
+    // eye and the work plane see are the room's walls, floors, ceilings and tables.
+    bool detail = false;
+  };
+
+  std::uint32_t brightest_patch() const { return brightest_; }
+  // After each shot (and before the first): the unshot totals and the brightest sender,
+  // which the next shot sends from. Only the senders the shot changed are looked at
+  // again (mark_surveyed()); see "Survey" below.
+  void survey_patches();
+  // The patches sender i's shot must visit: all others but those SolveOptions::cull
+  // rules out. Appends their roots to `roots`; counts in the report.
+  // The form factors at their roots' corners are computed on the way (the walk's first
+  // level), so that the sender's first level costs no parallel region of its own.
+  void receiving_patches(std::uint32_t i, std::vector<ElementId>& roots);
+  // False once a limit of RefineSettings is reached; says so in the report, once.
+  bool refinement_allowed();
+  double lost_fraction(std::uint32_t patch);
+  // The shares of cosine-weighted rays (SolveOptions::escape_rays of them, stratified)
+  // that meet nothing and that meet nothing or a back face, from the points and
+  // normals `origin` draws (from the random state it is given), seeded by `seed`.
+  using EscapeOrigin = std::function<void(std::uint64_t& state, Vec3d& origin, Vec3d& normal)>;
+  // `rays` of them (the first pass is for SolveOptions::escape_rays only).
+  std::array<double, 2> escape_counts(std::uint64_t seed, const EscapeOrigin& origin, int rays) const;
+  std::array<double, 2> patch_escape_counts(std::uint32_t patch, int rays) const;
+  std::array<double, 2> cluster_escape_counts(std::uint32_t cluster, int rays) const;
+  // A rough lost fraction (kRoughEscapeRays) for a patch or cluster sender that holds
+  // unshot light but has not shot yet: survey_patches() needs only an idea of it.
+  void rough_lost_fraction(std::uint32_t id);
+  static constexpr int kRoughEscapeRays = 64;
+  // Form factors at the corners of `elements` for the current sender, computed in
+  // parallel for every receiver not yet known this shot.
+  void compute_form_factors(const std::vector<ElementId>& elements);
+  // One element's: on return, all three are known (see solver.cpp).
+  void compute_corner_form_factors(ElementId e);
+  // After compute_form_factors(elements), when settles_visibility(): a corner whose few
+  // first rays all agreed (RayVerdict::seen or hidden) is cast again with the full count
+  // when another corner of one of its elements found the sender partly hidden or had
+  // the opposite verdict, and the sender's unoccluded light there is at least
+  // kSettleShare of what the corner holds. Two rays that happen to agree inside a
+  // penumbra otherwise make a lone dark or bright vertex (tests/pictures_test.cpp).
+  void settle_visibility(const std::vector<ElementId>& elements);
+  static constexpr double kSettleShare = 0.05;
+  // For shots from patches, emitting or reflecting (not luminaires: their rays give no
+  // verdict). Two first rays that agree are kept as the whole answer, and that pulls
+  // the fraction seen towards 0 or 1: a sender seen by a fifth of it counts as seen
+  // with p^2, hidden with (1 - p)^2, so 10% instead of 20% on average. Behind the
+  // obstructed 1990 room's partition ends, where the floor's bright patches are seen
+  // in part, that made the ceiling and floor up to 8% too bright (mean 0.80%; settled:
+  // 0.71%, largest 6-7%, at seeds 1-3). For reflected light only where it is at least
+  // kSettleShareReflected of the corner's value: on the IFC house that costs 7% more
+  // rays (at kSettleShare's 0.05, 12%, for the room no better).
+  bool settles_visibility() const { return sender_ < patches_.size(); }
+  static constexpr double kSettleShareReflected = 0.2;
+  static constexpr double kNearFieldShare = 0.05;
+  // The share of patch p that point x (normal n) sees, by kNearRays rays: to its
+  // centroid and halfway to each corner. For the near-field corrections, where a
+  // closed form stands for the light of a patch a few decimetres off, which a
+  // partition or a wall's thickness may hide (near_field_start, near_unshot).
+  double near_seen_share(const Vec3d& x, const Vec3d& n, const Patch& p) const;
+  static constexpr int kNearRays = 4;
+  double form_factor(ElementId e, int corner) const;
+  // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
+  // elements appear (in id order: the same for any thread count), for elements from
+  // `first` on. A receiver is evaluated at a point a hundredth of the way from its
+  // vertex to the centroid of the first element that has it, fixed for the whole solve:
+  // at a vertex that is also a sender's corner, F depends on the direction one comes
+  // from, and the shares of all senders sum to the right total only if every shot uses
+  // the same point.
+  void register_receivers(ElementId first);
+  // F from evaluation point x (of vertex v, on a surface with normal n) to patch
+  // `sender`: Lambert's closed form times the fraction of seeded rays that arrive.
+  double point_form_factor(VertexHandle v, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
+                           double* unoccluded, const RayPlan& plan = {}) const;
+  // Adaptive subdivision: new elements' corner values gathered from every patch that
+  // has shot, this shot included (the paper: their values "must be recalculated"). They
+  // are stamped so that the walk, if it reaches them in this shot, does not add this
+  // shot again.
+  void gather_new_elements(std::size_t first);
+  double element_form_factor(ElementId e) const;
+  // Lambert's closed form from point x (normal n) to the current sender, with the
+  // sender's shape (SolveOptions::shaped_senders) where it has one.
+  double sender_closed_form(const Vec3d& x, const Vec3d& n) const;
+  // The current sender's shape: its unshot radiosity, the mean m plus the deviation of
+  // the unshot values at the 15 nodes of a quarter grid on it (values there minus
+  // Patch::shot_at_nodes; a node's value comes from the elements below it, so a refined
+  // sender is shaped by more than its corners) from their mean, linear on each of the
+  // grid's 16 parts (triangle_parts()). Each part gets a weight w = its mean unshot
+  // radiosity / m (the parts have equal areas and the mean of w is 1: the power shot is
+  // the same). F to the shaped sender is the sum of w times F to each part: the parts'
+  // closed forms within kShapeNear sender radii (point_to_parted_triangle); beyond, F
+  // to the whole plus the parts' corrections (w - 1) times their point-to-area forms,
+  // to first order in the parts' offsets: the gradient of the point-to-area form at
+  // the sender's centroid times the weights' dipole, sum (w - 1) (part centroid -
+  // centroid) / 16 (relative error about (sender radius / distance)^2). A quarter grid,
+  // not the midpoints' four parts: on the 1990 room at --quality high the largest error
+  // falls from 2.7% to 0.7% (the walls' radiosity bends within a patch toward the
+  // ceiling, which four linear parts miss).
+  //   Where the unshot values bend too little within the midpoint parts to need the
+  // grid (at most kShapeBend m off the line between the nodes beside them), the shape
+  // is linear on the four midpoint parts and receivers near the sender see those four
+  // (point_to_quartered_triangle: 9 Lambert terms, not up to 30).
+  struct SenderShape {
+    bool on = false;
+    bool fine = false;  // the 16 parts, not the 4 midpoint ones
+    std::array<double, kTriangleParts> weight{};
+    std::array<double, 4> coarse{};  // the midpoint parts' (point_to_quartered_triangle)
+    Vec3d centroid, dipole;
+    double max_weight = 1;
+  } shape_;
+  // Within 1.5 radii the parts are summed. On the 1990 room's 2 m patches with uniform
+  // receivers (measured with the corners-only shape), 1 radius leaves 0.29% from the
+  // reference, 1.5, 2 and 3 all 0.24%.
+  static constexpr double kShapeNear = 1.5;
+  // The bend that takes the 16 parts: 2% of the shot's mean. On the 1990 room at
+  // --quality high it gives what the 16 parts always give (largest error 0.72%); the
+  // generated storey's solve takes 2-5% longer than with the midpoint parts alone,
+  // against 6-9% with the 16 parts for every shot (more Lambert terms near senders,
+  // and the larger weights cull fewer receivers).
+  static constexpr double kShapeBend = 0.02;
+  void shape_sender();
+  // The shape of patch `patch`'s unshot radiosity for a shot of mean luminance m (see
+  // SenderShape); moves the patch's shot_at_nodes on to this shot.
+  SenderShape shape_of(std::uint32_t patch, double m);
+  // The shape of all that patch `patch` has shot so far (Patch::shot_at_nodes against
+  // its mean, Patch::shot), for gathering to new elements (gather_new_elements).
+  SenderShape shipped_shape(std::uint32_t patch) const;
+  // The shape of values b at the 15 nodes (form_factor.h's numbering) about mean m,
+  // with `fine` its SenderShape::fine; off where the parts' means are within 0.1% of m.
+  static SenderShape shape_from_nodes(const std::array<Vec3d, 3>& corners, const double* b, double m, bool fine);
+  // F from x (normal n) to a triangle sender with `shape` (the parted closed form
+  // near it, the dipole's first-order correction beyond).
+  static double shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
+                                   const Vec3d& centre, double radius, double area, const Vec3d& normal,
+                                   const SenderShape& shape);
+  // Luminance of the cumulated radiosity at point p of patch `root`'s surface: the
+  // leaf's corner values interpolated, plus what its ancestors still hold to push down.
+  double luminance_at(ElementId root, const Vec3d& p) const;
+  // OracleInputs::pushdown_error and current_peak for element q and this shot's dB at
+  // its corners.
+  // Returns the mean over q's edge midpoints of the visible form factor (the rule
+  // exact for quadratics: q's mean form factor), or -1 when it did not estimate.
+  // `mid` gets midpoint_form_factors() on the way.
+  double estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in,
+                                 std::array<double, 3>& mid) const;
+  // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
+  static constexpr double kCentroidWeight = 0.75;
+  // estimate_pushdown_error(): distance, in sender radii, from which the midpoint
+  // estimate uses the point-to-area form (its error relative to the estimate is about
+  // (1 / kFarField)^2).
+  static constexpr double kFarField = 5.0;
+  // Corner values for elements created since the last call, from their parents.
+  void initialise_new_elements();
+  // Elements from `first` on whose nearest older ancestor is one of this shot's
+  // `terminals` were split after the shot had stopped there (a neighbour's refinement,
+  // kept conforming, reached it): they took this shot's dB as a line between that
+  // ancestor's corners, which misses how F bends (beside a neighbouring wall, by a tenth
+  // of B). Their new corners take it from the sender's closed form instead, times the
+  // visible fraction interpolated from that ancestor's corners. What they then hold is
+  // kept (held_), for their own children should the refinement reach them again later
+  // in the shot: a floor vertex 19 cm from a wall, born two splits below a terminal
+  // of the wall's first shot, took a line between corners 0.75 m apart and stayed 2.2%
+  // dark in a converged furnace (bench/defaults.cpp, the 4 x 3 x 1.5 box).
+  void restart_split_terminals(std::size_t first, std::vector<ElementId> terminals, const Rgb& shot);
+  // This shot's dB at an element's corners and the fractions of the sender they see,
+  // for elements split from a terminal after the walk had passed (cleared every shot).
+  struct HeldShot {
+    std::array<Rgb, 3> dB;
+    std::array<double, 3> seen{};
+  };
+  std::unordered_map<ElementId, HeldShot> held_;
+  // Values of elements first to count - 1, each from its nearest ancestor before first.
+  void initialise_values(ElementId first, std::size_t count);
+  // Push-down: dB given at q's corners and edge midpoints reaches every element below
+  // q, interpolated by the quadratic through those six values (RefineSettings::
+  // quadratic_pushdown; linear from the corners otherwise: the midpoints are then the
+  // corners' means). It is lazy (exact, since a quadratic restricted to a child is the
+  // quadratic through the child's six nodes): q keeps the sum as pending, and flush(q)
+  // hands it to q's children when the walk enters them.
+  void push_down(ElementId q, const std::array<Rgb, 6>& delta);
+  void flush(ElementId q);
+  void flush_all();
+  Rgb interpolate(ElementId e, const std::array<Rgb, 3>& at_corners, const Vec3d& point) const;
+  std::array<double, 3> barycentric(ElementId e, const Vec3d& point) const;
+  // The quadratic through six node values (corners, then edge midpoints) at barycentric point l.
+  static Rgb quadratic(const std::array<Rgb, 6>& nodes, const std::array<double, 3>& l);
+  // This shot's visible form factor at q's three edge midpoints (edge k runs from corner
+  // k to k + 1): Lambert's closed form there times the mean visible fraction of the
+  // edge's ends (no rays), or, far from the sender, the corners' mean plus the far-field
+  // form's second difference.
+  void midpoint_form_factors(ElementId q, std::array<double, 3>& mid) const;
+  // A_q times the mean form factor over q: the share of the sender's power (per unit
+  // of its area) that q would receive, before account_transfers() normalises it.
+  double element_reach(ElementId q) const;
+  // `reach` holds element_reach() of each terminal element, computed where the walk
+  // stopped.
+  void account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
+                         std::uint32_t sender, const Rgb& shot_radiosity);
+
+  // A chunk of one level of a shot's walk: what its elements add to the shot's lists
+  // and counters, in level order (see shoot_once()). Kept between shots for their
+  // storage.
+  struct WalkChunk {
+    std::vector<ElementId> passed;  // the shot goes on below
+    std::vector<ElementId> subdivide, ready, terminals;
+    std::vector<double> reach;  // per terminal
+    std::size_t transfers = 0, patch_transfers = 0;
+    void count(const Element& el) {  // a transfer, as the paper counts them
+      ++transfers;
+      if (el.generation > 0) ++patch_transfers;
+    }
+    void clear() {
+      passed.clear();
+      subdivide.clear();
+      ready.clear();
+      terminals.clear();
+      reach.clear();
+      transfers = patch_transfers = 0;
+    }
+  };
+  std::vector<WalkChunk> walk_chunks_;
+  // One shot's steps (shoot.cpp, Figure 5).
+  // What decides refinement in this shot (a luminaire's and a primary patch's are
+  // sharper: see shot_rules()).
+  struct ShotRules {
+    bool from_luminaire = false, primary = false, sharp = false;
+    int max_generation = 0, detail_generation = 0;  // how deep elements may go (detail: on Patch::detail)
+    OracleThresholds oracle, detail_oracle;
+    Rgb ambient_now;  // for the push-down oracle (OracleThresholds::pushdown_ambient)
+  };
+  // The walk's lists: this level's elements, what it passes on, where the shot stopped.
+  struct ShotWalk {
+    std::vector<ElementId> level, next;
+    std::vector<ElementId> passed;     // the shot goes on below them
+    std::vector<ElementId> subdivide;  // leaves among them, to split
+    std::vector<ElementId> ready;      // existing elements of the next level
+    std::vector<ElementId> terminals;  // the shot stopped there
+    std::vector<double> reach;         // per terminal
+    // Adaptive: children of a leaf split in this shot, which the walk splits again to
+    // complete the 1 -> 4 split (sorted), this level's and the next's.
+    std::vector<ElementId> complete_split, complete_split_next;
+  };
+  void start_heartbeat();
+  // Picks the sender (sender_) and starts its shot: its light leaves its unshot
+  // radiosity, its shape is set. False when nothing is left to shoot.
+  bool pick_sender(Rgb& shot);
+  ShotRules shot_rules(std::uint32_t sender);  // also sets shot_max_rays_
+  // shoot(i, q) and the oracle for every element of walk.level.
+  void shoot_level(ShotWalk& walk, const ShotRules& rules, const Rgb& shot);
+  void shoot_element(ElementId q, const ShotRules& rules, const Rgb& shot,
+                     const std::vector<ElementId>& complete_split, WalkChunk& out);
+  void subdivide(ShotWalk& walk, const Rgb& shot);   // splits walk.subdivide; new elements start from their parent
+  void next_level(ShotWalk& walk, const Rgb& shot);  // the passed elements take dB; their children are the next level
+  void update(std::uint32_t sender, const Rgb& shot);  // the sender's shot is booked; the shot counted
+  // RefineSettings::patch_area, but no more than the largest patch: patches given
+  // larger than the model's faces (a box of 2 m faces at patch size 10) still refine.
+  double patch_area_ = 0;
+
+  // Sender groups (SolveOptions::group_radius; mesh/plane_groups.h; solver_groups.cpp).
+  // The patches on their own (not in a face cluster) are grouped with their neighbours
+  // in one plane: a group sends what all its patches hold in one shot, from its first
+  // patch's id (its leader), and each patch keeps receiving on its own. The light a
+  // group sends is exact: F to the group is the sum over its patches of Lambert's closed
+  // form times the patch's weight, its unshot radiosity over the group's mean
+  // (luminance), and its rays go to points on the patches drawn by those weights and
+  // areas. A group of one patch is that patch, shaped as before (shape_sender()).
+  // The group's lost fraction is kept in its leader's Patch::lost, escaped and
+  // rough_lost, measured from points on all its patches.
+  PlaneGroups groups_;
+  bool is_group(std::uint32_t id) const {
+    return id < patches_.size() && groups_.groups[groups_.group_of[id]].count > 1;
+  }
+  const PlaneGroups::Group& group_of(std::uint32_t patch) const { return groups_.groups[groups_.group_of[patch]]; }
+  void build_groups();
+  // Makes group `leader`'s the current sender: its mean unshot radiosity (what the shot
+  // carries per unit of its area), the weights; the patches keep what overshoot leaves.
+  Rgb start_group_shot(std::uint32_t leader);
+  struct SenderMember {
+    std::array<Vec3d, 3> corners;
+    Vec3d centroid;
+    double radius = 0;  // of a sphere about the centroid holding its corners
+    double area = 0, weight = 0;
+    double cumulated = 0;  // of |weight| x area, up to and with this one, over the total
+    SenderShape shape;     // of its own unshot radiosity (shaped senders)
+  };
+  std::vector<SenderMember> sender_members_;  // the current group sender's (empty: none)
+  std::vector<Rgb> sender_member_unshot_;     // what each held before the shot
+  Vec3d sender_centre_;                       // the current patch or group sender's sphere
+  double sender_radius_ = 0;
+  // A point on the current group sender for uniform numbers u (which member, by weight
+  // and area) and v, w (where in it).
+  Vec3d group_sender_point(double u, double v, double w) const;
+  // F from x (normal n) to the current group sender with rays (seeded by `key`): each
+  // patch's term of group_closed_form() times the fraction of its rays that arrive, the
+  // rays drawn among the patches in proportion to their terms at x (so a point that
+  // sees one patch of the group and not the other gets that patch's light, however
+  // their areas compare).
+  double group_form_factor(std::uint64_t key, const Vec3d& x, const Vec3d& n, double* unoccluded,
+                           const RayPlan& plan) const;
+  // Lambert's closed form from x (normal n) to the current group sender, weighted (each
+  // patch's term in `terms`, when given, sender_members_.size() of them); a
+  // patch at least kMemberFar of its radii away, wholly above x's horizon, counts by the
+  // point-to-area form A cos cos / (pi r^2) instead (relative error about 0.25%, 0.5% at
+  // 8 radii: measured against numerical integration over a right triangle).
+  double group_closed_form(const Vec3d& x, const Vec3d& n, double* terms = nullptr) const;
+  static constexpr double kMemberFar = 12.0;
+
+  // Face clusters (SolveOptions::cluster_area; solver_clusters.cpp). A cluster far from
+  // the sender (kClusterFar of its radii from the sender's bounding sphere, or the sky)
+  // receives as one: the form factor at each part's point (its normal, the usual
+  // rays), given to every patch of the part (constant over each patch, pushed down to
+  // whatever closure split below it); otherwise it is opened and its patches receive
+  // as any patch does. Either way, the light they reflect joins their part's unshot
+  // power. A cluster sends that power as one sender: each part a disc of its area at
+  // its point (Wallace et al. 1989's A cos cos / (pi r^2 + A), which stays finite near),
+  // weighted by its share of the power; the fraction of seeded rays to parts picked in
+  // proportion to their terms that arrive gives visibility, as a patch's rays do.
+  static constexpr double kClusterFar = 4.0;
+  static constexpr double kDetailFacet = 8.0;  // 8 x patch_area: the patch size squared
+  FaceClusters clusters_;
+  std::vector<std::uint32_t> standalone_;  // patches in no cluster, in id order
+  struct ClusterState {
+    double lost = -1, escaped = 0;  // as Patch::lost and escaped
+    double rough_lost = -1;         // as Patch::rough_lost
+    bool dirty = false;             // parts hold pending light for its patches
+  };
+  std::vector<ClusterState> cluster_state_;
+  std::vector<Rgb> part_unshot_;      // power (W) its patches reflected, not yet shot
+  std::vector<Rgb> part_pending_;     // shot x F received as one, not yet given to its patches
+  std::vector<Rgb> part_reflectance_area_;  // sum over its patches of reflectance x area
+  std::vector<double> part_form_factor_;    // this shot's, for clusters received as one
+  // The current cluster sender's parts: share of its power (luminance), point, normal.
+  struct SenderPart {
+    Vec3d point, normal;
+    double area = 0, share = 0;
+  };
+  std::vector<SenderPart> sender_parts_;
+  double sender_cluster_radius_ = 0;
+  Vec3d sender_cluster_centre_;
+  // Clusters this shot receives as one, and the ones it opens.
+  std::vector<std::uint32_t> whole_clusters_;
+  void build_clusters();
+  // Over the patches on their own and the clusters (items 0 .. S - 1: standalone_,
+  // then the clusters), for culling what a sender cannot see (receiver_tree.h).
+  ReceiverTree tree_;
+  void build_tree();
+  // The receivers the current sender may see: patches on their own (in id order) and
+  // clusters (in index order), through the tree's tests.
+  void visible_receivers(std::vector<std::uint32_t>& patches, std::vector<std::uint32_t>& clusters);
+  ReceiverTree::Seen test_node(std::uint32_t node) const;
+  bool sender_near(const Bounds& box) const;
+  // What the cluster does in this shot: 0 culled, 1 received as one, 2 opened.
+  int cluster_verdict(std::uint32_t cluster) const;
+  // Form factors at the parts of cluster c for the current sender.
+  void receive_cluster(std::uint32_t cluster);
+  // Gives the parts' pending light to the cluster's patches.
+  void flush_cluster(std::uint32_t cluster);
+  void flush_clusters();
+  // Makes cluster c the current sender; returns the power it shoots.
+  Rgb start_cluster_shot(std::uint32_t cluster);
+  // F from point x (normal n) to the current cluster sender: unoccluded closed form, and
+  // with rays (seeded by `key`) when `rays`.
+  double cluster_form_factor(const Vec3d& x, const Vec3d& n, std::uint64_t key, bool rays, double* unoccluded) const;
+  double cluster_lost_fraction(std::uint32_t cluster);
+  // Casts `rays` visibility rays from x (on a surface with unit normal n) to seeded
+  // points of patch `sender`, stratified (strata()), leaving out points behind or on
+  // x's plane; adds those that arrive to `visible` and those cast to `cast`. Drawn
+  // from the random stream `state`.
+  void cast_to_patch(const Patch& sender, const Vec3d& x, const Vec3d& n, int rays, std::uint64_t& state,
+                     int& visible, int& cast) const;
+  // The form factor at a point with its own seed key (a vertex's index, or a part's).
+  double point_form_factor_keyed(std::uint64_t key, const Vec3d& x, const Vec3d& n, std::uint32_t sender,
+                                 double* unoccluded, const RayPlan& plan = {}) const;
+  static constexpr std::size_t kChunks = 256;  // per level, at most
+
+  SceneMesh& scene_;
+  ElementHierarchy& hierarchy_;
+  SolveOptions options_;
+  RefineSettings refine_;
+  std::unique_ptr<Visibility> visibility_;
+  std::vector<Patch> patches_;
+  // Per element (GrowArray: see grow_array.h).
+  GrowArray<std::array<Rgb, 3>> value_;    // cumulated radiosity at its corners
+  // Push-down not yet handed to children: a quadratic on the element, its values at the
+  // corners (0-2) and at the midpoints of edges (k, k + 1) (3-5).
+  GrowArray<std::array<Rgb, 6>> pending_;
+  // The patches that have shot, as balls (centre, radius), for
+  // RefineSettings::near_field_start: on the IFC house, an index of all 62,000 patches
+  // gave 125 candidates per new vertex, of which 1 in 120 had shot enough to count.
+  SphereIndex patch_index_;
+  std::vector<char> indexed_;  // per patch: in patch_index_
+  void index_shot_patch(std::uint32_t p) {
+    if (indexed_[p]) return;
+    indexed_[p] = 1;
+    patch_index_.insert(p, {patches_[p].centre, patches_[p].radius});
+  }
+  // True when an ancestor of e holds push-down that has not reached e yet (flush()).
+  bool pending_above(ElementId e) const;
+  // True when v is on a border or has a face in another plane than `normal`'s.
+  bool on_plane_edge(VertexHandle v, const Vec3d& normal) const;
+  // What patches near a new corner at `position` (of new element e, split from
+  // `source`) would add to its start beyond the line across `source`
+  // (RefineSettings::near_field_start).
+  // `line`: the luminance the line across `source` gives there.
+  Rgb near_field_start(ElementId e, ElementId source, const Vec3d& position, double line,
+                       std::vector<std::uint32_t>& scratch) const;
+  GrowArray<std::size_t> gathered_in_;     // shot whose transfer its gather included (+1)
+  std::size_t initialised_ = 0;            // elements with values
+  // This shot: sender and form factors by (vertex, patch).
+  std::uint32_t sender_ = 0;
+  Rgb current_shot_;  // the radiosity the sender shoots in this shot
+  // Cohen et al. 1988's ambient radiosity: unshot power per area of the whole scene,
+  // times the mean interreflection factor 1 / (1 - mean reflectance); in an open
+  // scene, less the share the shots so far lost to the outside (see solver.cpp).
+  Rgb ambient() const;
+  // Per receiver (where `wanted`): the first bounce of what the patches within half a
+  // patch size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
+  // the reflectance, what the written value adds to the ambient term (near_unshot.cpp).
+  std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
+  // The mesh's error on the primary sources' shadows (direct_gap.cpp): per leaf, the
+  // unoccluded direct light at the centroid times the reflectance times |the share of
+  // it that arrives there - the mean of the corners' shares|. Kept for the elements and
+  // receivers already looked at; update_direct_gaps() computes the new ones
+  // (SolveOptions::direct_check).
+  void update_direct_gaps();
+  double direct_gap(ElementId e) const;  // 0 where not computed
+  void choose_direct_sources();
+  // Every primary source (direct_sources_) has shot, but patches holding at most the
+  // error target's share of the primary patches' emitted power. Until then the solve
+  // does not stop by its estimate: in an open model the ambient term takes the unshot
+  // light as lost in the share the shots so far lost, and a lamp of two triangles 10 m
+  // above a 1 m floor stopped after one of them with half the floor's light missing
+  // and 0.47% estimated.
+  bool primary_sources_shot();
+  // Patch i is a primary source that has not shot: its next shot carries its emission
+  // (RefineSettings::sharp_primary_patches, SolveOptions::primary_rays).
+  bool primary_patch_unshot(std::uint32_t i);
+  // Rays added where a point's first rays disagree in the current shot: SolveOptions::
+  // max_rays (set by the constructor), or primary_rays in a primary patch's first shot.
+  int shot_max_rays_ = 0;
+  // Direct light at x (normal n) from direct_sources_, per unit reflectance: what
+  // arrives, with its own seeded rays (`key`), and what would without occluders.
+  struct DirectLight {
+    Rgb seen, open;
+    // The share that arrives, light-weighted over the sources; 1 where none could.
+    double seen_fraction() const { return open.luminance() > 0 ? seen.luminance() / open.luminance() : 1.0; }
+  };
+  DirectLight direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const;
+  static constexpr std::size_t kDirectPatches = 16;  // the brightest emitting patches looked at
+  static constexpr double kDirectShare = 0.9;        // of the patches' emitted power, or none
+  static constexpr int kDirectRays = 16;             // per emitting patch and point, after 4 that disagree
+  static constexpr double kDirectGapWeight = 2.0 / 3;    // its weight in the estimate's mesh part
+  std::vector<std::uint32_t> direct_sources_;        // luminaires but the sky, then patches
+  bool direct_sources_chosen_ = false;
+  std::vector<float> direct_gap_;      // per element; < 0: not yet computed
+  std::vector<float> receiver_seen_;   // per receiver, DirectLight::seen_fraction(); < 0: not yet computed
+  struct CornerFormFactor {
+    double visible = 0, unoccluded = 0;
+    RayVerdict verdict = RayVerdict::none;  // how the visible part was decided
+    // The fraction of the sender the corner sees (1 where it could see nothing anyway).
+    double visible_fraction() const { return unoccluded > 0 ? visible / unoccluded : 1.0; }
+  };
+  // A shadow's edge crosses q: its corners see fractions of the sender that differ by
+  // more than a quarter (see RefineSettings::shadow_levels).
+  bool shadow_crosses(ElementId q) const;
+  // A point-like luminaire's shadow edge across q is drawn finely enough: q's longest
+  // edge is below kShadowResolution of its distance from the luminaire (the outline is
+  // then placed to within that angle as seen from the light: 4 cm on a floor 2 m below
+  // a lamp). Refining further would cut a hard edge that never becomes smooth into
+  // ever smaller pieces along the whole outline of every chair leg and frame. (A
+  // hundredth: the office building's 36 luminaire shots made 4.09 M elements, 2.5 GB; a
+  // fiftieth: 3.42 M, 2.2 GB, the luminaire tests' closed forms unchanged.)
+  bool shadow_resolved(ElementId q) const;
+  static constexpr double kShadowResolution = 0.02;
+  struct Receiver {
+    VertexHandle vertex;
+    std::uint32_t patch;  // of the first element that has it (its facing is the receiver's)
+    Vec3d point;          // where it is evaluated
+  };
+  VertexPlaneMap<std::uint32_t> receiver_id_;                // (vertex, facing) -> receiver
+  std::vector<Receiver> receivers_;
+  GrowArray<std::array<std::uint32_t, 3>> corner_receiver_;  // per element corner
+  GrowArray<CornerFormFactor> form_factor_;                  // per receiver, this shot's...
+  GrowArray<std::uint64_t> form_factor_shot_;  // ...when this is 2 (iterations + 1) + 1 (see solver.cpp)
+  const CornerFormFactor& corner_form_factor(ElementId e, int corner) const {
+    return form_factor_[corner_receiver_[e][corner]];
+  }
+  std::vector<Luminaire> luminaires_;
+  std::vector<double> luminaire_flux_;             // lm, Luminaire::flux()
+  std::vector<double> luminaire_lost_, luminaire_escaped_;  // as Patch::lost and escaped (-1: not yet)
+  std::size_t next_luminaire_ = 0;                 // the luminaires before it have shot
+  Rgb luminaire_unshot_;                           // colour x flux of those that have not
+  double emitted_total_ = 0;
+  std::uint32_t brightest_ = 0;  // see survey_patches()
+
+  // Survey: what survey_patches() sums over the senders (groups of patches, then face
+  // clusters; a sender's "unit" is its index in that order), kept in a segment tree
+  // whose leaves are the units. A shot changes the sender and the receivers it lit, so
+  // only their leaves and those leaves' ancestors are summed again: a pass over every
+  // sender after every shot was a fifth of the 4-storey office building's solve, and
+  // grew with the building. Each node joins its two children in one order, so the sums
+  // are the same for any number of threads; ties go to the lower unit.
+  struct Survey {
+    Rgb unshot, staying;  // power (x area), and the part of it that will not leave
+    double magnitude = 0;
+    double best_power = -1;  // what the brightest is chosen by (SolveOptions::whole_patch_senders)
+    std::uint32_t best = 0;  // the sender id of the unit with the largest best_power
+  };
+  static Survey join(Survey left, const Survey& right);
+  Survey survey_unit(std::size_t unit, bool open) const;
+  std::uint32_t unit_of_sender(std::uint32_t id) const;  // a patch (its group) or a cluster
+  std::uint32_t unit_of_receiver(std::uint32_t patch) const;  // its group, or its cluster
+  void mark_surveyed(std::uint32_t unit);  // changed: summed again at the next survey
+  std::vector<Survey> survey_tree_;        // node 1 the root; leaves from survey_leaves_
+  std::size_t survey_leaves_ = 0;
+  std::vector<std::uint32_t> survey_dirty_;
+  std::vector<char> survey_marked_;
+  bool survey_built_ = false, survey_open_ = false;
+  double total_area_ = 0;
+  Rgb reflectance_area_;  // sum over patches of reflectance x area
+  double unshot_magnitude_ = 0;
+  Rgb unshot_staying_;  // unshot power that will not leave the scene (see survey_patches())  // sum over patches of |unshot| x area, all channels
+  std::vector<double> cull_verdict_;  // receiving_patches(): per candidate, kept for its buffer
+  std::vector<std::uint32_t> candidates_;  // receiving_patches(): patches judged one by one
+  std::vector<int> cluster_verdict_;       // receiving_patches(): per cluster seen
+  std::vector<std::uint32_t> seen_clusters_;  // receiving_patches(): clusters the tree kept
+  std::size_t memory_checked_at_ = 0;  // element count at the last look at resident memory
+  double form_factor_error_sum_ = 0;
+  SolveReport report_;
+
+};
+
+}  // namespace dynrad::rad
