@@ -48,7 +48,7 @@ constexpr double kMaxReflectance = 0.95;
 // that remain undefined. OBJ and MTL text may be UTF-8 or UTF-16 with a byte-order mark.
 PolygonSoup read_model(const std::string& path, const ReadOptions& options = {});
 
-// Reads a JSON scene file (see README, "Scene files"): mesh files with transforms,
+// Reads a JSON scene file (see docs/scene-files.md, "Scene files"): mesh files with transforms,
 // material definitions and assignments by material or group name.
 PolygonSoup read_scene(const std::string& path, const ReadOptions& options = {});
 

@@ -1,6 +1,6 @@
-// Hostile geometry through the command line (README, "Hostile input"): each case must
+// Hostile geometry through the command line (docs/import-and-repair.md, "Hostile input"): each case must
 // finish without a crash, write no NaN, keep the energy balance (emitted = absorbed +
-// escaped + unshot), and do what the README says it does.
+// escaped + unshot), and do what that page says it does.
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -220,7 +220,7 @@ TEST(HostileInput, ExactDuplicatesAreDroppedAndCoincidentSurfacesShareTheLight) 
   EXPECT_LE(floor_max, 1.05 * reference_floor_max);
 }
 
-// Backs are black (README, "Facing"): in a room modelled inside out, the lamp's light
+// Backs are black (docs/scene-files.md, "Facing"): in a room modelled inside out, the lamp's light
 // lands on the ceiling's back and is absorbed there. Nothing is lit, nothing escapes.
 TEST(HostileInput, InsideOutRoomAbsorbsAllLightOnBlackBacks) {
   TempDir dir;
@@ -410,7 +410,7 @@ TEST(HostileInput, ZeroAreaEmittersAreDroppedWithAWarning) {
 }
 
 // ---------------------------------------------------------------------------
-// Lenient where Blender, MeshLab and assimp are lenient (README, "Hostile input"): read
+// Lenient where Blender, MeshLab and assimp are lenient (docs/import-and-repair.md, "Hostile input"): read
 // with a warning naming the file and line or the material; --strict refuses.
 
 constexpr auto npos = std::string::npos;

@@ -107,7 +107,7 @@ TEST_P(Physics, FurnaceGivesEOverOneMinusRho) {
     // Dynamic subdivision's weak case: an even result made of uneven transfers. The
     // push-down oracle bounds each transfer's push-down error by `pushdown` only when
     // nothing else holds it back (no cumulated-gradient condition, no floor); its
-    // defaults trade that bound for speed (README, "Adaptive and dynamic subdivision").
+    // defaults trade that bound for speed (docs/algorithm.md, "Adaptive and dynamic subdivision").
     config.oracle.pushdown_cumulated_gradient = 0;
     config.oracle.pushdown_floor = 0;
     config.oracle.pushdown = 0.02;

@@ -373,7 +373,7 @@ int run_probe(const ProbeOptions& options) {
 Command add_probe_command(CLI::App& app) {
   auto options = std::make_shared<ProbeOptions>();
   CLI::App* command =
-      app.add_subcommand("probe", "Radiosity and irradiance of a lit mesh at calculation points (see README)");
+      app.add_subcommand("probe", "Radiosity and irradiance of a lit mesh at calculation points (see docs/report.md)");
   command->add_option("lit", options->lit, "Lit PLY written by dynrad solve")->required();
   command->add_option("--points", options->points, "File of points, one 'x y z nx ny nz' per line, # comments");
   command->add_option("--grid", options->grid,

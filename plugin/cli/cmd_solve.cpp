@@ -549,7 +549,7 @@ Command add_solve_command(CLI::App& app) {
                       "Adaptive's gradient threshold (default 0.25); also all three of the paper oracle's")
       ->check(CLI::PositiveNumber);
   command->add_option("--oracle", options->oracle,
-                      "Dynamic's refinement oracle: pushdown (bounds push-down error) or paper (Figure 6); see README")
+                      "Dynamic's refinement oracle: pushdown (bounds push-down error) or paper (Figure 6); see docs/algorithm.md")
       ->capture_default_str();
   command->add_option("--cumulated-gradient", options->cumulated_gradient,
                       "Dynamic: threshold on the cumulated gradient (both oracles)")

@@ -328,7 +328,7 @@ int run_validate(const ValidateOptions& options) {
 Command add_validate_command(CLI::App& app) {
   auto options = std::make_shared<ValidateOptions>();
   CLI::App* command = app.add_subcommand(
-      "validate", "Run the analytical test cases of CIE 171:2006 and compare with their references (see README)");
+      "validate", "Run the analytical test cases of CIE 171:2006 and compare with their references (see docs/validation.md)");
   command->add_option("--case", options->cases, "Only these cases: a section (5.11) or the start of 'id variant'");
   command->add_option("--skip", options->skip, "Leave these cases out (as --case names them)");
   command->add_flag("--list", options->list, "List the cases and exit");

@@ -119,7 +119,7 @@ std::string grid_json(const std::string& name, double x0, double y0, double x1, 
                      name, x0, y0, x1, y1, height, spacing);
 }
 
-constexpr double kLumensPerWatt = 179;  // an emitting face's W/m^2 to lm/m^2 (README: Units)
+constexpr double kLumensPerWatt = 179;  // an emitting face's W/m^2 to lm/m^2 (docs/scene-files.md: units)
 
 Case point_over_plane() {
   Case c;

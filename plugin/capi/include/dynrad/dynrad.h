@@ -132,7 +132,7 @@ DYNRAD_API dynrad_status dynrad_options_set_threads(dynrad_options* options, int
 DYNRAD_API dynrad_status dynrad_options_set_seed(dynrad_options* options, uint64_t seed);
 /* Adaptive's gradient threshold (> 0), also all three of the paper oracle's; default 0.25. */
 DYNRAD_API dynrad_status dynrad_options_set_threshold(dynrad_options* options, double threshold);
-/* Dynamic's oracle: "pushdown" (default) or "paper" (Figure 6); see the README. */
+/* Dynamic's oracle: "pushdown" (default) or "paper" (Figure 6); see docs/algorithm.md. */
 DYNRAD_API dynrad_status dynrad_options_set_oracle(dynrad_options* options, const char* oracle);
 /* One of dynamic's thresholds (>= 0), by the command line's option name without
  * dashes: "cumulated_gradient" (of the oracle chosen so far), "current_gradient",
@@ -155,7 +155,7 @@ DYNRAD_API dynrad_status dynrad_options_set_negligible_share(dynrad_options* opt
  * the result's mesh is a refinement of the merged one. */
 DYNRAD_API dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on);
 /* Imprint where surfaces cross or touch, and remove the parts no light reaches
- * (nonzero: on, the default, as `dynrad solve`; 0: as `--no-imprint`). See the README,
+ * (nonzero: on, the default, as `dynrad solve`; 0: as `--no-imprint`). See docs/import-and-repair.md,
  * "Imprinting". */
 DYNRAD_API dynrad_status dynrad_options_set_imprint(dynrad_options* options, int on);
 /* Shape each shot's unshot radiosity by the sender's corners and a quarter grid of
@@ -229,7 +229,7 @@ typedef struct dynrad_report {
   double absorbed[3];
   double escaped[3]; /* left through openings */
   int stopped_by;    /* a dynrad_stop_reason */
-  double estimated_error; /* estimated mean relative error of the values (README, "The report") */
+  double estimated_error; /* estimated mean relative error of the values (docs/report.md) */
 } dynrad_report;
 
 DYNRAD_API dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report);
