@@ -25,8 +25,8 @@
 #include "radiosity/analysis/render.h"
 #include "radiosity/analysis/views.h"
 #include "radiosity/transfer/visibility.h"
+#include "radiosity/pipeline/pipeline.h"
 #include "radiosity/solver/settings.h"
-#include "radiosity/sources/shadow_outlines.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/analysis/tonemap.h"
 
@@ -83,9 +83,11 @@ struct SolveCliOptions {
 nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 
 int run_solve(SolveCliOptions& options) {
-  rad::RefineSettings refine;
+  // The request to the pipeline (radiosity/pipeline/pipeline.h) from the options.
+  rad::SceneRequest request;
+  request.path = options.load.input;
   try {
-    refine.method = rad::parse_method(options.method);
+    request.method = rad::parse_method(options.method);
   } catch (const std::invalid_argument& e) {
     throw InputError("--method", 0, e.what());
   }
@@ -95,25 +97,25 @@ int run_solve(SolveCliOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw InputError("--quality", 0, e.what());
   }
-  rad::OracleThresholds& oracle = refine.dynamic;
-  if (options.threshold > 0) {
-    refine.adaptive_threshold = options.threshold;
-    oracle.cumulated_gradient = oracle.current_gradient = oracle.current_ratio = options.threshold;
-  }
-  if (options.oracle == "pushdown") {
-    oracle.variant = rad::OracleThresholds::Variant::pushdown;
-    if (options.cumulated_gradient >= 0) oracle.pushdown_cumulated_gradient = options.cumulated_gradient;
-  } else if (options.oracle == "paper") {
-    oracle.variant = rad::OracleThresholds::Variant::paper;
-    if (options.cumulated_gradient >= 0) oracle.cumulated_gradient = options.cumulated_gradient;
-  } else {
+  request.threshold = options.threshold;
+  if (options.oracle == "pushdown")
+    request.oracle = rad::OracleThresholds::Variant::pushdown;
+  else if (options.oracle == "paper")
+    request.oracle = rad::OracleThresholds::Variant::paper;
+  else
     throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: pushdown, paper.");
-  }
-  if (options.current_gradient >= 0) oracle.current_gradient = options.current_gradient;
-  if (options.current_ratio >= 0) oracle.current_ratio = options.current_ratio;
-  if (options.no_pushdown_ambient) oracle.pushdown_ambient = false;
-  refine.max_elements = options.max_elements;
+  request.cumulated_gradient = options.cumulated_gradient;
+  request.current_gradient = options.current_gradient;
+  request.current_ratio = options.current_ratio;
+  request.pushdown_ambient = !options.no_pushdown_ambient;
+  request.max_elements = options.max_elements;
   options.solve.ambient_display = options.ambient;
+  if (options.units == "photometric")
+    request.units = rad::Units::photometric;
+  else if (options.units == "radiometric")
+    request.units = rad::Units::radiometric;
+  else if (options.units != "auto")
+    throw InputError("--units", 0, "'" + options.units + "' is not a unit system; available: auto, photometric, radiometric.");
   {
     std::string ext = std::filesystem::path(options.output).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -138,149 +140,67 @@ int run_solve(SolveCliOptions& options) {
   // Observers, emergency routes, the project block (plugin/cli/design_output.h).
   const bool design = check_design_inputs(options.load.input);
 
-  const CleanupOptions cleanup = options.load.cleanup();
-  SimplifyOptions simplify;
-  simplify.enabled = options.load.simplify;
-  LoadedScene scene = load_scene(options.load.input, cleanup, simplify, options.load.read());
-  for (const auto& w : scene.warnings) spdlog::warn("{}", w);
-  if (cleanup.imprint && scene.cleanup.imprinted_edges > 0)
-    spdlog::info("imprinted {} lines where surfaces meet; removed {:.4g} (model units squared) that no light reaches",
-                 scene.cleanup.imprinted_edges, scene.cleanup.hidden_area);
-  if (simplify.enabled)
-    spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", scene.simplify.faces_before,
-                 scene.simplify.faces_after, scene.simplify.seconds);
+  request.cleanup = options.load.cleanup();
+  request.simplify.enabled = options.load.simplify;
+  request.read = options.load.read();
+  request.settings.quality = quality;
+  request.settings.patch_size = options.patch_size;
+  request.settings.max_level = options.max_level;
+  request.settings.converge = options.converge;
+  request.settings.pushdown = options.pushdown;
+  request.settings.pushdown_floor = options.pushdown_floor;
+  request.settings.memory_budget_mib = options.memory_budget_mb;
+  request.settings.clusters = options.clusters;
+  request.settings.overshoot = options.overshoot;
+  request.shadow_outlines = options.shadow_outlines;
+  request.solve = options.solve;
+  // Load, repair, light sources, settings, patches.
+  rad::PreparedScene prepared = rad::prepare_scene(request);
+  const CleanupOptions& cleanup = request.cleanup;
+  LoadedScene& scene = prepared.scene;
   SceneMesh& mesh = *scene.mesh;
-  // Daylight (the scene's "sky": the sun, then the sky) shoots first, then luminaires.
-  std::vector<rad::Luminaire> luminaires = rad::read_daylight(options.load.input, scene.glazing, scene.openings);
-  const bool daylight = !luminaires.empty();
-  for (rad::Luminaire& l : rad::read_luminaires(options.load.input)) luminaires.push_back(std::move(l));
-  if (!scene.glazing.empty())
-    spdlog::info("{} glazing triangles (materials with a transmittance): windows, not lit{}", scene.glazing.size(),
-                 daylight ? "; the sky and the sun come through them" : "; without a \"sky\" nothing comes through them");
-  if (!(mesh.emitting_area() > 0) && luminaires.empty())
-    throw InputError(options.load.input, 0,
-                     "no face emits light and there is no luminaire and no sky, so everything would be black. "
-                     "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
-                     "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "
-                     "materials.");
-  bool photometric = !luminaires.empty();
-  if (options.units == "photometric") {
-    photometric = true;
-  } else if (options.units == "radiometric") {
-    if (!luminaires.empty())
-      throw InputError("--units", 0,
-                       "radiometric units cannot be used with luminaires or daylight, which are given in candela, "
-                       "lumens and lux. Leave --units out (photometric) or remove them.");
-    photometric = false;
-  } else if (options.units != "auto") {
-    throw InputError("--units", 0, "'" + options.units + "' is not a unit system; available: auto, photometric, radiometric.");
-  }
-  if (photometric) {
-    options.solve.emission_scale = rad::kLumensPerWatt;
-    options.solve.min_reflectance = 1e-4;
-  }
-  for (const rad::Luminaire& l : luminaires) spdlog::info("luminaire {}", l.describe());
-  // Light scenes: each control group's light in a channel of its own (radiosity/design/
-  // light_scenes.h); materials grey for the solve, restored after it.
-  const std::vector<rad::LightScene> light_scenes = rad::read_light_scenes(options.load.input, luminaires);
-  rad::ChannelPlan channels;
-  const std::vector<Material> materials = mesh.materials();
-  if (!light_scenes.empty()) {
-    channels = rad::plan_channels(options.load.input, luminaires, mesh.emitting_area() > 0);
-    rad::assign_channels(luminaires, channels);
-    const int own = channels.channel("");
-    std::size_t coloured = 0;
-    for (std::size_t m = 0; m < materials.size(); ++m) {
-      Material grey = materials[m];
-      coloured += grey.reflectance.max_channel() - grey.reflectance.min_channel() > 1e-9;
-      grey.reflectance = rad::grey(grey.reflectance);
-      grey.emission = own >= 0 ? rad::channel_colour(own) * grey.emission.luminance() : Rgb();
-      mesh.set_material(m, grey);
-    }
-    if (coloured > 0)
-      spdlog::warn("light scenes: {} coloured materials are taken as grey of the same luminance reflectance (each "
-                   "group's light travels in a colour channel of its own); the lit mesh is grey.",
-                   coloured);
-    std::string groups;
-    for (const std::string& g : channels.channels) groups += (groups.empty() ? "" : ", ") + (g.empty() ? "(no group)" : g);
-    spdlog::info("light scenes: {} scenes of {} channels ({}), from one solve", light_scenes.size(),
-                 channels.channels.size(), groups);
-  }
-  if (!luminaires.empty()) {
-    const rad::Visibility visibility(mesh);
-    for (const std::string& w : rad::luminaire_warnings(visibility, luminaires)) spdlog::warn("{}", w);
-  }
-  // Settings from the model and the quality (radiosity/solver/settings.h); every option given
-  // overrides.
-  rad::SettingsRequest request;
-  request.quality = quality;
-  request.patch_size = options.patch_size;
-  request.max_level = options.max_level;
-  request.converge = options.converge;
-  request.pushdown = options.pushdown;
-  request.pushdown_floor = options.pushdown_floor;
-  request.memory_budget_mib = options.memory_budget_mb;
-  request.clusters = options.clusters;
-  request.overshoot = options.overshoot;
-  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, options.solve);
-  const rad::ChosenSettings& chosen = applied.chosen;
-  const double patch_size = applied.patch_size;
-  const std::string& patch_rule = applied.patch_size_rule;
-  const PatchingReport patching = make_patches(mesh, patch_size);
-  rad::ShadowOutlineReport outlines;
-  if (options.shadow_outlines && !luminaires.empty()) {
-    outlines = rad::insert_shadow_outlines(mesh, luminaires, rad::shadow_outline_options(patch_size));
-    if (outlines.outlines > 0)
-      spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
-                   "{:.2f} s",
-                   outlines.outlines, outlines.silhouette_edges, outlines.lines, outlines.vertices_added,
-                   outlines.seconds);
-  }
-  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
-  ElementHierarchy hierarchy(mesh, refinement);
-  spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", options.load.input, patching.faces_before,
-               hierarchy.patch_count(), patch_size, patch_rule,
-               options.solve.error_target > 0
-                   ? fmt::format("quality {}: stop at {:.2g}% estimated error", rad::quality_name(quality),
-                                 100 * options.solve.error_target)
-                   : fmt::format("stop at {:.2g}% unshot", 100 * options.solve.converge));
+  const std::vector<rad::Luminaire>& luminaires = prepared.luminaires;
+  const bool photometric = prepared.photometric;
+  const std::vector<rad::LightScene>& light_scenes = prepared.light_scenes;
+  const rad::ChannelPlan& channels = prepared.channels;
+  const std::vector<Material>& materials = prepared.materials;
+  const rad::RefineSettings& refine = prepared.refine;
+  const rad::OracleThresholds& oracle = refine.dynamic;
+  const rad::ChosenSettings& chosen = prepared.applied.chosen;
+  const double patch_size = prepared.applied.patch_size;
+  const std::string& patch_rule = prepared.applied.patch_size_rule;
+  const rad::ShadowOutlineReport& outlines = prepared.outlines;
+  const ElementHierarchy& hierarchy = *prepared.hierarchy;
 
-  Progress progress(options.solve.error_target > 0 ? options.solve.error_target : options.solve.converge);
-  options.solve.should_stop = [] { return g_stop_requested.load(); };
-  rad::Solver* running = nullptr;
-  options.solve.on_shot = [&](std::size_t shot, double unshot) {
-    const rad::SolveReport& so_far = running->report();
+  // The solve, with progress; a first SIGINT or SIGTERM stops it at the next shot.
+  Progress progress(prepared.solve.error_target > 0 ? prepared.solve.error_target : prepared.solve.converge);
+  prepared.solve.should_stop = [] { return g_stop_requested.load(); };
+  prepared.request.on_shot = [&](const rad::Solver& running, std::size_t shot, double unshot) {
+    const rad::SolveReport& so_far = running.report();
     const double error = so_far.estimated_error.total() > 0 ? so_far.estimated_error.total() : -1;
     progress.update(shot, unshot, error, hierarchy.element_count());
   };
-  options.solve.on_busy = [&](std::size_t points, double seconds) {
+  prepared.solve.on_busy = [&](std::size_t points, double seconds) {
     progress.busy(points, seconds, g_stop_requested.load());
   };
+  options.solve = prepared.solve;  // as the settings left it: the report gives it
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  rad::Solver solver(mesh, hierarchy, options.solve, refine, luminaires);
-  running = &solver;
-  rad::SolveReport report = solver.run();
-  progress.finish();
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
-
-  // Output: per-vertex radiosity, display colours through an exposure.
-  rad::Solver::Output result = solver.output();
   const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   // Grids, views, the preview, the glTF's cameras and the designer's checks gather from
   // or render the lit mesh (radiosity/analysis/lit_scene.h).
-  std::unique_ptr<rad::LitScene> scene_lit;
-  if (!grids.empty() || !cameras.empty() || automatic_views || !options.preview.empty() || glb || design ||
-      !light_scenes.empty())
-    scene_lit = std::make_unique<rad::LitScene>(
-        rad::lit_scene(mesh, result.split, result.radiosity, luminaires, options.solve.emission_scale, photometric));
-  // Grids: illuminance in mid-air, gathered from the solution (radiosity/analysis/grid.h). With
-  // light scenes, from the channelled solve: each scene from the channels, and the grids
-  // themselves from their luminance, the scene with every group at full output.
-  const std::vector<rad::GridResult> gathered =
-      scene_lit ? rad::gather_grids(*scene_lit, grids) : std::vector<rad::GridResult>();
+  rad::SolvedScene solved = rad::solve_scene(
+      prepared, !cameras.empty() || automatic_views || !options.preview.empty() || glb || design);
+  progress.finish();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  const rad::Solver& solver = *solved.solver;
+  rad::SolveReport& report = solved.report;
+  // Output: per-vertex radiosity, display colours through an exposure.
+  rad::Solver::Output& result = solved.output;
+  std::unique_ptr<rad::LitScene>& scene_lit = solved.lit;
+  const std::vector<rad::GridResult>& gathered = solved.grids;
   nlohmann::json scenes_report = nlohmann::json::array();
   if (!light_scenes.empty()) {
     scenes_report = light_scene_results(light_scenes, channels, gathered);

@@ -1,4 +1,4 @@
-#include "radiosity/visibility.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <spdlog/spdlog.h>
 

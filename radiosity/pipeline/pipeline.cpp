@@ -1,0 +1,173 @@
+// The pipeline from a scene to a solved result (see pipeline.h).
+#include "radiosity/pipeline/pipeline.h"
+
+#include "mesh/error.h"
+#include "radiosity/analysis/grid_scene.h"
+#include "radiosity/sources/daylight.h"
+#include "radiosity/transfer/visibility.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace dynrad::rad {
+
+std::vector<std::string> scene_file_sections() {
+  // read_luminaires, read_grids, read_cameras, read_daylight, read_observers,
+  // read_emergency_areas, read_light_scenes; "project", the reports' title block.
+  return {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project", "scenes"};
+}
+
+namespace {
+
+// The method, the quality's settings and the oracles' thresholds the request overrides.
+void refine_settings(const SceneRequest& request, RefineSettings& refine) {
+  refine.method = request.method;
+  OracleThresholds& oracle = refine.dynamic;
+  if (request.threshold > 0) {
+    refine.adaptive_threshold = request.threshold;
+    oracle.cumulated_gradient = oracle.current_gradient = oracle.current_ratio = request.threshold;
+  }
+  oracle.variant = request.oracle;
+  if (request.cumulated_gradient >= 0) {
+    if (request.oracle == OracleThresholds::Variant::pushdown)
+      oracle.pushdown_cumulated_gradient = request.cumulated_gradient;
+    else
+      oracle.cumulated_gradient = request.cumulated_gradient;
+  }
+  if (request.current_gradient >= 0) oracle.current_gradient = request.current_gradient;
+  if (request.current_ratio >= 0) oracle.current_ratio = request.current_ratio;
+  if (!request.pushdown_ambient) oracle.pushdown_ambient = false;
+  refine.max_elements = request.max_elements;
+}
+
+// Light scenes: each control group's light in a channel of its own (design/
+// light_scenes.h); materials grey for the solve (PreparedScene::materials keeps them).
+void plan_light_scenes(PreparedScene& p) {
+  SceneMesh& mesh = *p.scene.mesh;
+  p.light_scenes = read_light_scenes(p.request.path, p.luminaires);
+  p.materials = mesh.materials();
+  if (p.light_scenes.empty()) return;
+  p.channels = plan_channels(p.request.path, p.luminaires, mesh.emitting_area() > 0);
+  assign_channels(p.luminaires, p.channels);
+  const int own = p.channels.channel("");
+  std::size_t coloured = 0;
+  for (std::size_t m = 0; m < p.materials.size(); ++m) {
+    Material grey_material = p.materials[m];
+    coloured += grey_material.reflectance.max_channel() - grey_material.reflectance.min_channel() > 1e-9;
+    grey_material.reflectance = grey(grey_material.reflectance);
+    grey_material.emission = own >= 0 ? channel_colour(own) * grey_material.emission.luminance() : Rgb();
+    mesh.set_material(m, grey_material);
+  }
+  if (coloured > 0)
+    spdlog::warn("light scenes: {} coloured materials are taken as grey of the same luminance reflectance (each "
+                 "group's light travels in a colour channel of its own); the lit mesh is grey.",
+                 coloured);
+  std::string groups;
+  for (const std::string& g : p.channels.channels) groups += (groups.empty() ? "" : ", ") + (g.empty() ? "(no group)" : g);
+  spdlog::info("light scenes: {} scenes of {} channels ({}), from one solve", p.light_scenes.size(),
+               p.channels.channels.size(), groups);
+}
+
+}  // namespace
+
+PreparedScene prepare_scene(const SceneRequest& request) {
+  PreparedScene p;
+  p.request = request;
+  p.solve = request.solve;
+  refine_settings(request, p.refine);
+  p.grids = read_grids(request.path);
+
+  // 1. Read and repair.
+  ReadOptions read = request.read;
+  read.other_scene_keys = scene_file_sections();
+  p.scene = load_scene(request.path, request.cleanup, request.simplify, read);
+  for (const auto& w : p.scene.warnings) spdlog::warn("{}", w);
+  if (request.cleanup.imprint && p.scene.cleanup.imprinted_edges > 0)
+    spdlog::info("imprinted {} lines where surfaces meet; removed {:.4g} (model units squared) that no light reaches",
+                 p.scene.cleanup.imprinted_edges, p.scene.cleanup.hidden_area);
+  if (request.simplify.enabled)
+    spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", p.scene.simplify.faces_before,
+                 p.scene.simplify.faces_after, p.scene.simplify.seconds);
+  SceneMesh& mesh = *p.scene.mesh;
+
+  // 2. Light sources: daylight (the scene's "sky": the sun, then the sky) shoots first,
+  // then luminaires.
+  p.luminaires = read_daylight(request.path, p.scene.glazing, p.scene.openings);
+  p.daylight = !p.luminaires.empty();
+  for (Luminaire& l : read_luminaires(request.path)) p.luminaires.push_back(std::move(l));
+  if (!p.scene.glazing.empty())
+    spdlog::info("{} glazing triangles (materials with a transmittance): windows, not lit{}", p.scene.glazing.size(),
+                 p.daylight ? "; the sky and the sun come through them"
+                            : "; without a \"sky\" nothing comes through them");
+  if (!(mesh.emitting_area() > 0) && p.luminaires.empty())
+    throw InputError(request.path, 0,
+                     "no face emits light and there is no luminaire and no sky, so everything would be black. "
+                     "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
+                     "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "
+                     "materials.");
+  p.photometric = !p.luminaires.empty();
+  if (request.units == Units::photometric) {
+    p.photometric = true;
+  } else if (request.units == Units::radiometric) {
+    if (!p.luminaires.empty())
+      throw InputError("--units", 0,
+                       "radiometric units cannot be used with luminaires or daylight, which are given in candela, "
+                       "lumens and lux. Leave --units out (photometric) or remove them.");
+    p.photometric = false;
+  }
+  if (p.photometric) {
+    p.solve.emission_scale = kLumensPerWatt;
+    p.solve.min_reflectance = 1e-4;
+  }
+  for (const Luminaire& l : p.luminaires) spdlog::info("luminaire {}", l.describe());
+  plan_light_scenes(p);
+  if (!p.luminaires.empty()) {
+    const Visibility visibility(mesh);
+    for (const std::string& w : luminaire_warnings(visibility, p.luminaires)) spdlog::warn("{}", w);
+  }
+
+  // 3. Settings from the model and the quality (radiosity/solver/settings.h); every
+  // setting the request gives overrides.
+  p.applied = apply_settings(mesh, request.settings, p.refine, p.solve);
+  const double patch_size = p.applied.patch_size;
+
+  // 4. Patches, the outlines of hard shadows, the element hierarchy.
+  p.patching = make_patches(mesh, patch_size);
+  if (request.shadow_outlines && !p.luminaires.empty()) {
+    p.outlines = insert_shadow_outlines(mesh, p.luminaires, shadow_outline_options(patch_size));
+    if (p.outlines.outlines > 0)
+      spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
+                   "{:.2f} s",
+                   p.outlines.outlines, p.outlines.silhouette_edges, p.outlines.lines, p.outlines.vertices_added,
+                   p.outlines.seconds);
+  }
+  p.hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(patch_size));
+  spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", request.path, p.patching.faces_before,
+               p.hierarchy->patch_count(), patch_size, p.applied.patch_size_rule,
+               p.solve.error_target > 0
+                   ? fmt::format("quality {}: stop at {:.2g}% estimated error", quality_name(request.settings.quality),
+                                 100 * p.solve.error_target)
+                   : fmt::format("stop at {:.2g}% unshot", 100 * p.solve.converge));
+  return p;
+}
+
+SolvedScene solve_scene(PreparedScene& p, bool lit) {
+  SolvedScene s;
+  SolveOptions options = p.solve;
+  const Solver* running = nullptr;
+  if (p.request.on_shot)
+    options.on_shot = [&](std::size_t shot, double unshot) { p.request.on_shot(*running, shot, unshot); };
+  s.solver = std::make_unique<Solver>(*p.scene.mesh, *p.hierarchy, options, p.refine, p.luminaires);
+  running = s.solver.get();
+  s.report = s.solver->run();
+  s.output = s.solver->output();
+  if (lit || !p.grids.empty() || !p.light_scenes.empty())
+    s.lit = std::make_unique<LitScene>(lit_scene(*p.scene.mesh, s.output.split, s.output.radiosity, p.luminaires,
+                                                 p.solve.emission_scale, p.photometric));
+  // Grids: illuminance in mid-air, gathered from the solution (radiosity/analysis/
+  // grid.h). With light scenes, from the channelled solve.
+  if (s.lit) s.grids = gather_grids(*s.lit, p.grids);
+  return s;
+}
+
+}  // namespace dynrad::rad

@@ -1,0 +1,100 @@
+// One pipeline from a scene to a solved result, for every host: the command line
+// (plugin/cli/cmd_solve.cpp), the C ABI (plugin/capi), tests and benchmarks. A feature
+// added here reaches all of them.
+//
+//   1. prepare_scene(): read the model or scene file and repair it (mesh/load.h); its
+//      light sources (daylight first, then luminaires; light scenes' channels); the
+//      settings chosen from the model and the request (radiosity/solver/settings.h);
+//      patches, shadow outlines, the element hierarchy.
+//   2. solve_scene(): the solve (radiosity/solver/solver.h), its output per vertex,
+//      and, when asked for, the lit scene and the scene file's grids gathered from it.
+//
+// What each host does around it (its options, checking its outputs can be written,
+// writing files or returning arrays) stays with the host.
+#pragma once
+
+#include "mesh/cleanup.h"
+#include "mesh/import.h"
+#include "mesh/load.h"
+#include "mesh/refinement.h"
+#include "mesh/simplify.h"
+#include "radiosity/analysis/grid.h"
+#include "radiosity/analysis/lit_scene.h"
+#include "radiosity/design/light_scenes.h"
+#include "radiosity/solver/settings.h"
+#include "radiosity/solver/solver.h"
+#include "radiosity/sources/luminaire.h"
+#include "radiosity/sources/shadow_outlines.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dynrad::rad {
+
+enum class Units { automatic, photometric, radiometric };
+
+// What a host asks for. Defaults are `dynrad solve`'s with no options.
+struct SceneRequest {
+  std::string path;  // a model file, or a JSON scene file
+  CleanupOptions cleanup;
+  SimplifyOptions simplify;  // enabled by default, as `solve`
+  ReadOptions read;          // its other_scene_keys are the pipeline's (scene_file_sections())
+  Method method = Method::dynamic;
+  SettingsRequest settings;  // the quality, and what the host sets of what is chosen from the model
+  // The oracles' thresholds (RefineSettings, OracleThresholds); < 0: the default.
+  double threshold = -1;  // adaptive's, and all three of the paper oracle's
+  OracleThresholds::Variant oracle = OracleThresholds::Variant::pushdown;
+  double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1;
+  bool pushdown_ambient = true;
+  std::size_t max_elements = 0;  // 0: no limit
+  bool shadow_outlines = true;   // hard shadows' outlines as mesh edges (shadow_outlines.h)
+  Units units = Units::automatic;
+  // Stop rules, threads, seed, display options; on_shot and should_stop are the host's
+  // (on_shot is wired to `on_shot` below when that is set).
+  SolveOptions solve;
+  // Called after each shot with the running solver (for progress that shows its report).
+  std::function<void(const Solver&, std::size_t shot, double unshot)> on_shot;
+};
+
+// The scene file's top-level sections the radiosity layer reads (beside "meshes" and
+// "materials", which mesh/ reads): what ReadOptions::other_scene_keys must hold.
+std::vector<std::string> scene_file_sections();
+
+// Everything up to the solve.
+struct PreparedScene {
+  SceneRequest request;
+  LoadedScene scene;  // scene.mesh is refined in place by the solve
+  std::vector<Luminaire> luminaires;  // daylight (the sun, then the sky), then luminaires
+  bool daylight = false;
+  bool photometric = false;
+  std::vector<LightScene> light_scenes;  // with `channels`: materials grey for the solve
+  ChannelPlan channels;
+  std::vector<Material> materials;  // as read (restored after a light-scene solve)
+  std::vector<GridSpec> grids;
+  RefineSettings refine;
+  SolveOptions solve;
+  AppliedSettings applied;
+  PatchingReport patching;
+  ShadowOutlineReport outlines;
+  std::unique_ptr<ElementHierarchy> hierarchy;
+};
+
+// Throws InputError (naming the file, and the line or entry) for what cannot be read or
+// lit: no light at all, radiometric units with luminaires, bad settings.
+PreparedScene prepare_scene(const SceneRequest& request);
+
+struct SolvedScene {
+  std::unique_ptr<Solver> solver;
+  SolveReport report;
+  Solver::Output output;
+  std::unique_ptr<LitScene> lit;  // when asked for (or needed by grids and light scenes)
+  std::vector<GridResult> grids;  // the scene file's grids, gathered from `lit`
+};
+
+// `lit`: also build the lit scene (views, renders, the designer's checks need it); it
+// is built anyway when the scene has grids or light scenes.
+SolvedScene solve_scene(PreparedScene& prepared, bool lit = false);
+
+}  // namespace dynrad::rad
