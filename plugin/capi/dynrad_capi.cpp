@@ -8,11 +8,16 @@
 #include "mesh/import.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
+#include "radiosity/pipeline/pipeline.h"
+#include "radiosity/pipeline/report_json.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/analysis/tonemap.h"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -23,11 +28,14 @@
 
 // The opaque handles.
 struct dynrad_scene {
+  // A scene file (dynrad_scene_load), or arrays (dynrad_scene_create) as a soup.
+  std::string path;
   dynrad::PolygonSoup soup;
-  // Built and checked by dynrad_scene_create; the first solve takes it (a solve refines
-  // its mesh in place), later solves rebuild one from `soup`.
+  // Read (or built) and checked when the scene was made, with the default cleanup; the
+  // first solve with that cleanup takes it (a solve refines its mesh in place), later
+  // solves read the file or build from `soup` again.
   mutable std::mutex mutex;
-  mutable std::unique_ptr<dynrad::SceneMesh> unused_mesh;
+  mutable std::unique_ptr<dynrad::LoadedScene> unused;
 };
 
 struct dynrad_options {
@@ -46,6 +54,9 @@ struct dynrad_options {
 };
 
 struct dynrad_result {
+  std::string report_json;  // the solve's report (radiosity/pipeline/report_json.h), with "grids"
+  std::vector<std::string> grid_names;
+  std::vector<std::vector<double>> grid_points;  // per grid, x y z E per point (E NaN inside solids)
   std::vector<double> positions;
   std::vector<std::uint32_t> triangles;
   std::vector<std::uint32_t> triangle_materials;
@@ -82,6 +93,9 @@ dynrad_status guarded(Body&& body) noexcept {
   } catch (const Failure& f) {
     t_last_error = f.message;
     return f.status;
+  } catch (const rad::NoLightError& e) {
+    t_last_error = e.what();
+    return DYNRAD_NO_EMITTER;
   } catch (const InputError& e) {
     t_last_error = e.what();
     return DYNRAD_INVALID_INPUT;
@@ -168,18 +182,34 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
   return soup;
 }
 
-std::unique_ptr<SceneMesh> build_mesh(const PolygonSoup& soup, bool merge_flat_regions = true, bool imprint = true) {
+std::unique_ptr<LoadedScene> build_loaded(const PolygonSoup& soup, bool merge_flat_regions = true,
+                                          bool imprint = true) {
   // Flat regions merged before patching, as `dynrad solve` does by default, so that
   // both give one answer (mesh/simplify.h; the result is a new mesh either way).
   SimplifyOptions simplify;
   simplify.enabled = merge_flat_regions;
   CleanupOptions cleanup;
   cleanup.imprint = imprint;
-  LoadedScene loaded = load_soup(soup, kInputLabel, cleanup, simplify);
-  if (!(loaded.mesh->emitting_area() > 0))
+  auto loaded = std::make_unique<LoadedScene>(load_soup(soup, kInputLabel, cleanup, simplify));
+  if (!(loaded->mesh->emitting_area() > 0))
     fail(DYNRAD_NO_EMITTER,
          "dynrad_scene_create: every emitting polygon is degenerate (no area), so nothing emits light.");
-  return std::move(loaded.mesh);
+  return loaded;
+}
+
+// The request to the pipeline (radiosity/pipeline/pipeline.h) that `options` make.
+rad::SceneRequest scene_request(const dynrad_scene& scene, const dynrad_options& options) {
+  rad::SceneRequest request;
+  request.path = scene.path.empty() ? kInputLabel : scene.path;
+  request.simplify.enabled = options.simplify;
+  request.cleanup.imprint = options.imprint;
+  request.refine = options.refine;
+  request.method = options.refine.method;
+  request.oracle = options.refine.dynamic.variant;
+  request.max_elements = options.refine.max_elements;
+  request.settings = options.request;
+  request.solve = options.solve;
+  return request;
 }
 
 dynrad_stop_reason stop_reason(rad::StopReason reason) {
@@ -196,30 +226,34 @@ dynrad_stop_reason stop_reason(rad::StopReason reason) {
 
 dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, dynrad_progress_fn progress, void* user,
                      const volatile int* cancel) {
-  std::unique_ptr<SceneMesh> mesh;
-  if (options.simplify && options.imprint) {  // the mesh dynrad_scene_create built is the default one
+  // The library speaks through statuses and dynrad_last_error; the pipeline's notes
+  // (what it read, the settings it chose) are for the command line.
+  static const bool quiet = [] {
+    spdlog::set_level(spdlog::level::warn);
+    return true;
+  }();
+  (void)quiet;
+  rad::SceneRequest request = scene_request(scene, options);
+  std::unique_ptr<LoadedScene> loaded;
+  if (options.simplify && options.imprint) {  // the scene was read or built with that cleanup
     std::lock_guard<std::mutex> lock(scene.mutex);
-    mesh = std::move(scene.unused_mesh);
+    loaded = std::move(scene.unused);
   }
-  if (!mesh) mesh = build_mesh(scene.soup, options.simplify, options.imprint);
+  if (!loaded && scene.path.empty()) loaded = build_loaded(scene.soup, options.simplify, options.imprint);
 
-  // As `dynrad solve` does (plugin/cli/cmd_solve.cpp), so that both give one answer.
-  rad::RefineSettings refine = options.refine;
-  rad::SolveOptions solve_options = options.solve;
-  const rad::AppliedSettings applied = rad::apply_settings(*mesh, options.request, refine, solve_options);
-  const double patch_size = applied.patch_size;
-  const PatchingReport patching = make_patches(*mesh, patch_size);
-  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
-  ElementHierarchy hierarchy(*mesh, refinement);
-
+  // The pipeline `dynrad solve` runs, so that both give one answer.
   bool callback_stop = false;
-  solve_options.should_stop = [&] { return callback_stop || (cancel && *cancel != 0); };
-  solve_options.on_shot = [&](std::size_t shot, double unshot) {
+  request.solve.should_stop = [&] { return callback_stop || (cancel && *cancel != 0); };
+  request.on_shot = [&](const rad::Solver&, std::size_t shot, double unshot) {
     if (progress && progress(shot, unshot, user) != 0) callback_stop = true;
   };
-  rad::Solver solver(*mesh, hierarchy, solve_options, refine);
-  const rad::SolveReport report = solver.run();
-  const rad::Solver::Output output = solver.output();
+  rad::PreparedScene prepared = rad::prepare_scene(request, loaded.get());
+  const double patch_size = prepared.applied.patch_size;
+  const PatchingReport& patching = prepared.patching;
+  rad::SolvedScene solved = rad::solve_scene(prepared);
+  const rad::SolveReport& report = solved.report;
+  const rad::Solver::Output& output = solved.output;
+  const SceneMesh* mesh = prepared.scene.mesh.get();
 
   auto result = std::make_unique<dynrad_result>();
   const std::size_t vertices = output.split.size();
@@ -262,6 +296,20 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   }
   r.stopped_by = stop_reason(report.stopped_by);
   r.estimated_error = report.estimated_error.total();
+
+  // The scene file's grids, and the report.
+  for (const rad::GridResult& g : solved.grids) {
+    result->grid_names.push_back(g.spec.name);
+    std::vector<double>& points = result->grid_points.emplace_back();
+    for (const rad::GridPointResult& q : g.points)
+      points.insert(points.end(), {q.position[0], q.position[1], q.position[2],
+                                   q.masked ? std::numeric_limits<double>::quiet_NaN() : q.illuminance});
+  }
+  nlohmann::json j = rad::solve_report_json(prepared, solved, exposure);
+  j["dynrad_version"] = DYNRAD_VERSION;
+  j["input"] = request.path;
+  j["grids"] = rad::grid_summary_json(solved);
+  result->report_json = j.dump(2);
   return result.release();
 }
 
@@ -330,7 +378,29 @@ dynrad_status dynrad_scene_create(const double* positions, size_t vertex_count, 
     auto scene = std::make_unique<dynrad_scene>();
     scene->soup = soup_from_arrays(positions, vertex_count, polygon_indices, polygon_sizes, polygon_count,
                                    polygon_materials, materials, material_count);
-    scene->unused_mesh = build_mesh(scene->soup);
+    scene->unused = build_loaded(scene->soup);
+    *out_scene = scene.release();
+    return DYNRAD_OK;
+  });
+}
+
+dynrad_status dynrad_scene_load(const char* path, dynrad_scene** out_scene) {
+  return guarded([&] {
+    require(out_scene, "dynrad_scene_load: out_scene is NULL.");
+    *out_scene = nullptr;
+    require(path && *path, "dynrad_scene_load: path is NULL or empty.");
+    auto scene = std::make_unique<dynrad_scene>();
+    scene->path = path;
+    // Read and repaired now, as the first solve will take it, so that a file that
+    // cannot be read fails here; its scene-file sections are checked too.
+    ReadOptions read;
+    read.other_scene_keys = rad::scene_file_sections();
+    SimplifyOptions simplify;
+    simplify.enabled = dynrad_options{}.simplify;  // the cleanup of the default options, which the first solve takes
+    CleanupOptions cleanup;
+    cleanup.imprint = dynrad_options{}.imprint;
+    scene->unused = std::make_unique<LoadedScene>(load_scene(scene->path, cleanup, simplify, read));
+    rad::check_scene_sections(scene->path, *scene->unused);
     *out_scene = scene.release();
     return DYNRAD_OK;
   });
@@ -567,6 +637,32 @@ dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* r
   return guarded([&] {
     require(result && report, "dynrad_result_report: result or report is NULL.");
     *report = result->report;
+    return DYNRAD_OK;
+  });
+}
+
+const char* dynrad_result_report_json(const dynrad_result* result) { return result ? result->report_json.c_str() : ""; }
+
+size_t dynrad_result_grid_count(const dynrad_result* result) { return result ? result->grid_names.size() : 0; }
+
+const char* dynrad_result_grid_name(const dynrad_result* result, size_t grid) {
+  return result && grid < result->grid_names.size() ? result->grid_names[grid].c_str() : nullptr;
+}
+
+size_t dynrad_result_grid_point_count(const dynrad_result* result, size_t grid) {
+  return result && grid < result->grid_points.size() ? result->grid_points[grid].size() / 4 : 0;
+}
+
+dynrad_status dynrad_result_grid_points(const dynrad_result* result, size_t grid, double* xyze, size_t capacity) {
+  return guarded([&] {
+    require(result && xyze, "dynrad_result_grid_points: result or xyze is NULL.");
+    require(grid < result->grid_points.size(), "dynrad_result_grid_points: no grid of that index.");
+    const std::vector<double>& points = result->grid_points[grid];
+    if (capacity < points.size() / 4)
+      fail(DYNRAD_BUFFER_TOO_SMALL, "dynrad_result_grid_points: the buffer holds " + std::to_string(capacity) +
+                                        " points but " + std::to_string(points.size() / 4) +
+                                        " are needed; size it from dynrad_result_grid_point_count.");
+    if (!points.empty()) std::memcpy(xyze, points.data(), points.size() * sizeof(double));
     return DYNRAD_OK;
   });
 }

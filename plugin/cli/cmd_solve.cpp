@@ -26,6 +26,7 @@
 #include "radiosity/analysis/views.h"
 #include "radiosity/transfer/visibility.h"
 #include "radiosity/pipeline/pipeline.h"
+#include "radiosity/pipeline/report_json.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/analysis/tonemap.h"
@@ -79,8 +80,6 @@ struct SolveCliOptions {
   std::string units = "auto";
   rad::SolveOptions solve;
 };
-
-nlohmann::json rgb_json(const Rgb& c) { return {c.r, c.g, c.b}; }
 
 int run_solve(SolveCliOptions& options) {
   // The request to the pipeline (radiosity/pipeline/pipeline.h) from the options.
@@ -156,7 +155,6 @@ int run_solve(SolveCliOptions& options) {
   request.solve = options.solve;
   // Load, repair, light sources, settings, patches.
   rad::PreparedScene prepared = rad::prepare_scene(request);
-  const CleanupOptions& cleanup = request.cleanup;
   LoadedScene& scene = prepared.scene;
   SceneMesh& mesh = *scene.mesh;
   const std::vector<rad::Luminaire>& luminaires = prepared.luminaires;
@@ -164,12 +162,6 @@ int run_solve(SolveCliOptions& options) {
   const std::vector<rad::LightScene>& light_scenes = prepared.light_scenes;
   const rad::ChannelPlan& channels = prepared.channels;
   const std::vector<Material>& materials = prepared.materials;
-  const rad::RefineSettings& refine = prepared.refine;
-  const rad::OracleThresholds& oracle = refine.dynamic;
-  const rad::ChosenSettings& chosen = prepared.applied.chosen;
-  const double patch_size = prepared.applied.patch_size;
-  const std::string& patch_rule = prepared.applied.patch_size_rule;
-  const rad::ShadowOutlineReport& outlines = prepared.outlines;
   const ElementHierarchy& hierarchy = *prepared.hierarchy;
 
   // The solve, with progress; a first SIGINT or SIGTERM stops it at the next shot.
@@ -319,86 +311,15 @@ int run_solve(SolveCliOptions& options) {
                written_triangles, hierarchy.element_count());
 
   {
-    nlohmann::json j;
+    // The solve's part (radiosity/pipeline/report_json.h), then the command's own.
+    nlohmann::json j = rad::solve_report_json(prepared, solved, exposure);
     j["dynrad_version"] = DYNRAD_VERSION;
     j["input"] = options.load.input;
     j["output"] = options.output;
-    j["method"] = report.method;
-    j["units"] = photometric ? "photometric" : "radiometric";
     j["grids"] = grid_results;
     j["views"] = views_json(pictures);
     j["luminaires"] = nlohmann::json::array();
     for (const rad::Luminaire& l : solver.luminaires()) j["luminaires"].push_back(luminaire_json(l));
-    j["iterations"] = report.iterations;
-    j["energy_transfers"] = report.energy_transfers;
-    j["patch_element_transfers"] = report.patch_element_transfers;
-    j["visibility_rays"] = report.visibility_rays;
-    j["elements"] = report.elements;
-    j["patches"] = report.patches;
-    j["receivers"] = report.receivers;
-    j["max_level"] = refine.max_level;
-    j["unshot_fraction"] = report.unshot_fraction;
-    j["seconds"] = report.seconds;
-    j["imprint"] = {{"enabled", cleanup.imprint},
-                    {"imprinted_edges", scene.cleanup.imprinted_edges},
-                    {"hidden_area", scene.cleanup.hidden_area}};
-    j["shadow_outlines"] = {{"enabled", options.shadow_outlines},
-                            {"senders", outlines.senders},
-                            {"silhouette_edges", outlines.silhouette_edges},
-                            {"outlines", outlines.outlines},
-                            {"lines", outlines.lines},
-                            {"vertices_added", outlines.vertices_added},
-                            {"flips", outlines.flips},
-                            {"seconds", outlines.seconds}};
-    j["stopped_by"] = rad::to_string(report.stopped_by);
-    j["unshot_history"] = report.unshot_history;
-    j["transfers_history"] = report.transfers_history;
-    j["form_factor_sum_error"] = report.form_factor_sum_error;
-    j["refinement_stopped"] = report.refinement_stopped;
-    j["refinement_stopped_at"] = report.refinement_stopped_at;
-    j["peak_resident_memory"] = report.peak_resident_memory;
-    j["culled_receivers"] = report.culled_receivers;
-    j["clusters"] = {{"clusters", report.clusters},
-                     {"patches", report.clustered_patches},
-                     {"parts", report.cluster_parts},
-                     {"received_as_one", report.cluster_receptions},
-                     {"opened", report.cluster_openings}};
-    j["sender_groups"] = {{"groups", report.sender_groups}, {"patches", report.grouped_patches}};
-    j["overshoot"] = options.solve.overshoot;
-    j["hidden_receivers"] = report.hidden_receivers;
-    j["visibility_tests"] = report.visibility_tests;
-    j["negligible_receivers"] = report.negligible_receivers;
-    j["negligible_share_max"] = report.negligible_share_max;
-    j["ambient_display"] = options.solve.ambient_display;
-    j["shaped_senders"] = options.solve.shaped_senders;
-    j["exposure"] = exposure;
-    j["patch_size"] = patch_size;
-    j["settings"] = {{"quality", rad::quality_name(quality)},
-                     {"error_target", options.solve.error_target},
-                     {"mean_free_path", chosen.mean_free_path},
-                     {"patch_size", patch_size},
-                     {"patch_size_rule", patch_rule},
-                     {"max_level", refine.max_level},
-                     {"pushdown_error", oracle.pushdown},
-                     {"pushdown_floor", oracle.pushdown_floor},
-                     {"cumulated_gradient", oracle.pushdown_cumulated_gradient},
-                     {"memory_budget_mib", static_cast<double>(refine.memory_budget) / (1024.0 * 1024.0)},
-                     {"converge", options.solve.converge}};
-    j["estimated_error"] = {{"total", report.estimated_error.total()},
-                            {"unshot", report.estimated_error.unshot},
-                            {"discretisation", report.estimated_error.discretisation},
-                            {"shadows", report.estimated_error.shadows}};
-    j["energy"] = {{"emitted", rgb_json(e.emitted)},
-                   {"absorbed", rgb_json(e.absorbed)},
-                   {"escaped", rgb_json(e.escaped)},
-                   {"unshot", rgb_json(e.unshot)}};
-    j["options"] = {{"converge", options.solve.converge},
-                    {"max_elements", options.max_elements},
-                    {"memory_budget_mib", static_cast<double>(refine.memory_budget) / (1024.0 * 1024.0)},
-                    {"iterations", options.solve.max_iterations},
-                    {"time_limit", options.solve.time_limit},
-                    {"threads", options.solve.threads},
-                    {"seed", options.solve.seed}};
     if (scene_lit) add_design_checks(j, options.load.input, *scene_lit, gathered);
     if (!scenes_report.empty()) j["scenes"] = scenes_report;
     if (!options.report.empty()) {

@@ -3,6 +3,9 @@
 
 #include "mesh/error.h"
 #include "radiosity/analysis/grid_scene.h"
+#include "radiosity/analysis/views.h"
+#include "radiosity/design/emergency.h"
+#include "radiosity/design/glare.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/transfer/visibility.h"
 
@@ -21,6 +24,7 @@ namespace {
 
 // The method, the quality's settings and the oracles' thresholds the request overrides.
 void refine_settings(const SceneRequest& request, RefineSettings& refine) {
+  refine = request.refine;
   refine.method = request.method;
   OracleThresholds& oracle = refine.dynamic;
   if (request.threshold > 0) {
@@ -70,7 +74,17 @@ void plan_light_scenes(PreparedScene& p) {
 
 }  // namespace
 
-PreparedScene prepare_scene(const SceneRequest& request) {
+void check_scene_sections(const std::string& path, const LoadedScene& loaded) {
+  std::vector<Luminaire> luminaires = read_daylight(path, loaded.glazing, loaded.openings);
+  for (Luminaire& l : read_luminaires(path)) luminaires.push_back(std::move(l));
+  read_grids(path);
+  read_cameras(path);
+  read_observers(path);
+  read_emergency_areas(path);
+  read_light_scenes(path, luminaires);
+}
+
+PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
   PreparedScene p;
   p.request = request;
   p.solve = request.solve;
@@ -80,8 +94,9 @@ PreparedScene prepare_scene(const SceneRequest& request) {
   // 1. Read and repair.
   ReadOptions read = request.read;
   read.other_scene_keys = scene_file_sections();
-  p.scene = load_scene(request.path, request.cleanup, request.simplify, read);
-  for (const auto& w : p.scene.warnings) spdlog::warn("{}", w);
+  p.scene = loaded ? std::move(*loaded) : load_scene(request.path, request.cleanup, request.simplify, read);
+  if (!loaded)
+    for (const auto& w : p.scene.warnings) spdlog::warn("{}", w);
   if (request.cleanup.imprint && p.scene.cleanup.imprinted_edges > 0)
     spdlog::info("imprinted {} lines where surfaces meet; removed {:.4g} (model units squared) that no light reaches",
                  p.scene.cleanup.imprinted_edges, p.scene.cleanup.hidden_area);
@@ -100,7 +115,7 @@ PreparedScene prepare_scene(const SceneRequest& request) {
                  p.daylight ? "; the sky and the sun come through them"
                             : "; without a \"sky\" nothing comes through them");
   if (!(mesh.emitting_area() > 0) && p.luminaires.empty())
-    throw InputError(request.path, 0,
+    throw NoLightError(request.path, 0,
                      "no face emits light and there is no luminaire and no sky, so everything would be black. "
                      "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
                      "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "mesh/cleanup.h"
+#include "mesh/error.h"
 #include "mesh/import.h"
 #include "mesh/load.h"
 #include "mesh/refinement.h"
@@ -39,9 +40,10 @@ enum class Units { automatic, photometric, radiometric };
 struct SceneRequest {
   std::string path;  // a model file, or a JSON scene file
   CleanupOptions cleanup;
-  SimplifyOptions simplify;  // enabled by default, as `solve`
+  SimplifyOptions simplify;  // flat regions merged before patching: `dynrad solve` and the C ABI enable it
   ReadOptions read;          // its other_scene_keys are the pipeline's (scene_file_sections())
   Method method = Method::dynamic;
+  RefineSettings refine;  // the base the method and the thresholds below are set on
   SettingsRequest settings;  // the quality, and what the host sets of what is chosen from the model
   // The oracles' thresholds (RefineSettings, OracleThresholds); < 0: the default.
   double threshold = -1;  // adaptive's, and all three of the paper oracle's
@@ -81,9 +83,24 @@ struct PreparedScene {
   std::unique_ptr<ElementHierarchy> hierarchy;
 };
 
+// Nothing would be lit: no emitting face, no luminaire, no sky.
+class NoLightError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // Throws InputError (naming the file, and the line or entry) for what cannot be read or
-// lit: no light at all, radiometric units with luminaires, bad settings.
-PreparedScene prepare_scene(const SceneRequest& request);
+// lit: NoLightError for no light at all, radiometric units with luminaires, bad
+// settings. `loaded`, when given, is the model already read and repaired (a host that
+// builds it from arrays, or read it to check it): it is taken instead of reading
+// request.path, whose scene-file sections are still read when it is a scene file.
+PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded = nullptr);
+
+// Reads every section of a scene file that the pipeline and the designer's checks read
+// (sky, luminaires, grids, cameras, observers, routes, open areas, light scenes), so
+// that an error in any of them is reported before any work. `loaded` is the model
+// (its glazing and openings, which the sky needs).
+void check_scene_sections(const std::string& path, const LoadedScene& loaded);
 
 struct SolvedScene {
   std::unique_ptr<Solver> solver;

@@ -98,6 +98,13 @@ DYNRAD_API dynrad_status dynrad_scene_create(const double* positions, size_t ver
                                              size_t polygon_count, const uint32_t* polygon_materials,
                                              const dynrad_material* materials, size_t material_count,
                                              dynrad_scene** out_scene);
+/* A scene from a file, as `dynrad solve` reads it (docs/scene-files.md): a model (OBJ,
+ * PLY, OFF, STL, glTF, IFC, ...) or a JSON scene file with its luminaires, sky and sun,
+ * calculation grids, cameras, observers, escape routes and light scenes. The file is
+ * read, repaired and every section checked now (DYNRAD_INVALID_INPUT naming the file
+ * and the line or entry; DYNRAD_NO_EMITTER comes from dynrad_solve, once the light
+ * sources are known). Each dynrad_solve after the first reads the file again. */
+DYNRAD_API dynrad_status dynrad_scene_load(const char* path, dynrad_scene** out_scene);
 DYNRAD_API void dynrad_scene_destroy(dynrad_scene* scene);
 
 /* ------------------------------------------------------------------------------ */
@@ -233,6 +240,21 @@ typedef struct dynrad_report {
 } dynrad_report;
 
 DYNRAD_API dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report);
+
+/* The solve's report as JSON text (docs/report.md: its fields as `dynrad solve --report`
+ * writes them), with "grids": per grid its name, points, Eavg, Emin, Emax and U0. Owned
+ * by the result; "" for a NULL result. */
+DYNRAD_API const char* dynrad_result_report_json(const dynrad_result* result);
+
+/* The scene file's calculation grids (none for a scene made from arrays), in the file's
+ * order: the grid's name (NULL for an index out of range), its point count, and per
+ * point x, y, z and the illuminance (lx in photometric solves, W/m^2 otherwise; NaN
+ * for a point inside a solid), 4 doubles per point, `capacity` in points. */
+DYNRAD_API size_t dynrad_result_grid_count(const dynrad_result* result);
+DYNRAD_API const char* dynrad_result_grid_name(const dynrad_result* result, size_t grid);
+DYNRAD_API size_t dynrad_result_grid_point_count(const dynrad_result* result, size_t grid);
+DYNRAD_API dynrad_status dynrad_result_grid_points(const dynrad_result* result, size_t grid, double* xyze,
+                                                   size_t capacity);
 
 #ifdef __cplusplus
 }
