@@ -14,7 +14,9 @@
 #                                   # sanitizer runtimes) and llvm (llvm-symbolizer, for
 #                                   # readable sanitizer stacks) for scripts/fuzz.sh and
 #                                   # scripts/test-sanitizers.sh, poppler-utils (pdfinfo,
-#                                   # pdftotext: the PDF report's test)
+#                                   # pdftotext: the PDF report's test), pybind11, the
+#                                   # Python headers and venv (`import dynrad` and its
+#                                   # pip install test)
 #
 # DRY_RUN=1 prints the packages that would be installed and installs nothing.
 set -euo pipefail
@@ -32,6 +34,7 @@ test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   meshlab xvfb xauth
   blender python3-numpy assimp-testmodels
+  pybind11-dev python3-dev python3-venv
   chromium
   clang libclang-rt-dev llvm
   poppler-utils
