@@ -169,11 +169,14 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
 SolvedScene solve_scene(PreparedScene& p, bool lit) {
   SolvedScene s;
   SolveOptions options = p.solve;
-  const Solver* running = nullptr;
+  // The solver keeps its options: the callback holds what it needs itself.
+  auto running = std::make_shared<const Solver*>(nullptr);
   if (p.request.on_shot)
-    options.on_shot = [&](std::size_t shot, double unshot) { p.request.on_shot(*running, shot, unshot); };
+    options.on_shot = [running, on_shot = p.request.on_shot](std::size_t shot, double unshot) {
+      on_shot(**running, shot, unshot);
+    };
   s.solver = std::make_unique<Solver>(*p.scene.mesh, *p.hierarchy, options, p.refine, p.luminaires);
-  running = s.solver.get();
+  *running = s.solver.get();
   s.report = s.solver->run();
   s.output = s.solver->output();
   if (lit || !p.grids.empty() || !p.light_scenes.empty())
