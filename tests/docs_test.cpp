@@ -96,6 +96,7 @@ TEST(Docs, EverySceneFileKeyIsDocumented) {
       "{" + mesh + R"(, "grids": [)" + grid + R"(, "target": {"zzz": 1}}]})",
       "{" + mesh + R"(, "grids": [)" + grid + R"(, "target": {"Eavg": 300, "walls": {"zzz": 1}}}]})",
       "{" + mesh + R"(, "grids": [)" + grid + R"(, "target": {"Eavg": 300, "Ez": {"Eavg": 50, "zzz": 1}}}]})",
+      "{" + mesh + R"(, "grids": [)" + grid + R"(, "border": 0.5, "target": {"Eavg": 300, "surrounding": {"zzz": 1}}}]})",
       "{" + mesh + R"(, "cameras": [{"zzz": 1}]})",
       "{" + mesh + R"(, "observers": [{"zzz": 1}]})",
       "{" + mesh + R"(, "routes": [{"zzz": 1}]})",
