@@ -204,9 +204,6 @@ rad::SceneRequest scene_request(const dynrad_scene& scene, const dynrad_options&
   request.simplify.enabled = options.simplify;
   request.cleanup.imprint = options.imprint;
   request.refine = options.refine;
-  request.method = options.refine.method;
-  request.oracle = options.refine.dynamic.variant;
-  request.max_elements = options.refine.max_elements;
   request.settings = options.request;
   request.solve = options.solve;
   return request;

@@ -34,10 +34,10 @@ std::string hour_file(const std::string& prefix, const rad::HourEnding& h) {
   return fmt::format("{}_hour_{:02d}{:02d}_{:02d}.ply", prefix, h.month, h.day, h.hour);
 }
 
-// A grey lit PLY from luminance radiosity per vertex: display colours at `exposure`
-// (0: the hour's own), illuminance (B / reflectance) and luminance (B / pi).
+// A grey lit PLY from luminance radiosity per vertex: display colours at the values'
+// own exposure, illuminance (B / reflectance) and luminance (B / pi).
 VertexValues lit_values(const rad::VertexCoefficients& c, const std::vector<double>& radiosity,
-                        const std::vector<double>& area, double exposure) {
+                        const std::vector<double>& area) {
   std::vector<Rgb> linear(radiosity.size());
   std::vector<float> illuminance(radiosity.size()), luminance(radiosity.size());
   for (std::size_t v = 0; v < radiosity.size(); ++v) {
@@ -45,7 +45,7 @@ VertexValues lit_values(const rad::VertexCoefficients& c, const std::vector<doub
     illuminance[v] = c.reflectance[v] > 0 ? static_cast<float>(radiosity[v] / c.reflectance[v]) : 0.0f;
     luminance[v] = static_cast<float>(radiosity[v] / M_PI);
   }
-  if (!(exposure > 0)) exposure = rad::auto_exposure(linear, std::vector<char>(linear.size(), 1), area);
+  const double exposure = rad::auto_exposure(linear, std::vector<char>(linear.size(), 1), area);
   VertexValues values = rad::tone_map(linear, exposure, "radiosity");
   values.quality = illuminance;
   values.scalars.emplace_back("illuminance", std::move(illuminance));
@@ -90,17 +90,15 @@ void annual_mesh_outputs(const std::string& prefix, const SceneMesh& mesh, const
                                {"sun", !dark && year.hours[h.row].direct_normal > 0},
                                {"mean_luminance", lit > 0 ? sum / lit / M_PI : 0.0}});
     writes.push_back([&mesh, &split, &vertices, area, path, radiosity = std::move(radiosity)] {
-      write_mesh_with_values(path, mesh, split, lit_values(vertices, radiosity, *area, 0));
+      write_mesh_with_values(path, mesh, split, lit_values(vertices, radiosity, *area));
     });
   }
   if (!coefficients) return;
-  const Vec3d up = indirect.up(), north = indirect.north(), east = OpenMesh::cross(north, up);
   nlohmann::json suns = nlohmann::json::array();
   for (const Vec3d& s : year.suns) {
-    const double altitude = std::asin(std::clamp(OpenMesh::dot(s, up), -1.0, 1.0)) * 180 / M_PI;
-    double azimuth = std::atan2(OpenMesh::dot(s, east), OpenMesh::dot(s, north)) * 180 / M_PI;
-    if (azimuth < 0) azimuth += 360;
-    suns.push_back({std::round(altitude * 1e3) / 1e3, std::round(azimuth * 1e3) / 1e3});
+    const auto [altitude, azimuth] = indirect.altitude_azimuth(s);
+    const double degrees = 180 / M_PI, east_of_north = azimuth < 0 ? azimuth + 2 * M_PI : azimuth;
+    suns.push_back({std::round(altitude * degrees * 1e3) / 1e3, std::round(east_of_north * degrees * 1e3) / 1e3});
   }
   report["vertex_coefficients"] = {
       {"file", prefix + "_vertex_coefficients.npy"},
@@ -122,7 +120,7 @@ void annual_mesh_outputs(const std::string& prefix, const SceneMesh& mesh, const
     std::vector<double> radiosity(vertices.size());
     for (std::size_t v = 0; v < vertices.size(); ++v)
       radiosity[v] = rad::steering_light(vertices.at(v), vertices.sky_count, 0.0);
-    write_mesh_with_values(path, mesh, split, lit_values(vertices, radiosity, *area, 0));
+    write_mesh_with_values(path, mesh, split, lit_values(vertices, radiosity, *area));
   });
 }
 

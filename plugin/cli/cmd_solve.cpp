@@ -85,8 +85,9 @@ int run_solve(SolveCliOptions& options) {
   // The request to the pipeline (radiosity/pipeline/pipeline.h) from the options.
   rad::SceneRequest request;
   request.path = options.load.input;
+  rad::RefineSettings& refine = request.refine;
   try {
-    request.method = rad::parse_method(options.method);
+    refine.method = rad::parse_method(options.method);
   } catch (const std::invalid_argument& e) {
     throw InputError("--method", 0, e.what());
   }
@@ -96,18 +97,24 @@ int run_solve(SolveCliOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw InputError("--quality", 0, e.what());
   }
-  request.threshold = options.threshold;
-  if (options.oracle == "pushdown")
-    request.oracle = rad::OracleThresholds::Variant::pushdown;
-  else if (options.oracle == "paper")
-    request.oracle = rad::OracleThresholds::Variant::paper;
-  else
+  rad::OracleThresholds& oracle = refine.dynamic;
+  if (options.threshold > 0) {
+    refine.adaptive_threshold = options.threshold;
+    oracle.cumulated_gradient = oracle.current_gradient = oracle.current_ratio = options.threshold;
+  }
+  if (options.oracle == "pushdown") {
+    oracle.variant = rad::OracleThresholds::Variant::pushdown;
+    if (options.cumulated_gradient >= 0) oracle.pushdown_cumulated_gradient = options.cumulated_gradient;
+  } else if (options.oracle == "paper") {
+    oracle.variant = rad::OracleThresholds::Variant::paper;
+    if (options.cumulated_gradient >= 0) oracle.cumulated_gradient = options.cumulated_gradient;
+  } else {
     throw InputError("--oracle", 0, "'" + options.oracle + "' is not an oracle; available: pushdown, paper.");
-  request.cumulated_gradient = options.cumulated_gradient;
-  request.current_gradient = options.current_gradient;
-  request.current_ratio = options.current_ratio;
-  request.pushdown_ambient = !options.no_pushdown_ambient;
-  request.max_elements = options.max_elements;
+  }
+  if (options.current_gradient >= 0) oracle.current_gradient = options.current_gradient;
+  if (options.current_ratio >= 0) oracle.current_ratio = options.current_ratio;
+  if (options.no_pushdown_ambient) oracle.pushdown_ambient = false;
+  refine.max_elements = options.max_elements;
   options.solve.ambient_display = options.ambient;
   if (options.units == "photometric")
     request.units = rad::Units::photometric;

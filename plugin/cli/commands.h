@@ -4,6 +4,7 @@
 
 #include "mesh/cleanup.h"
 #include "mesh/import.h"
+#include "radiosity/pipeline/scene_sections.h"
 
 #include <CLI/CLI.hpp>
 
@@ -52,10 +53,7 @@ struct LoadOptions {
     options.strict = strict;
     options.up = up == "y" ? 1 : up == "z" ? 2 : -1;
     options.scale = scale;
-    // rad::read_luminaires, _grids, _cameras, _daylight, _observers, _emergency_areas,
-    // _light_scenes;
-    // the report's title block (plugin/cli/design_output.h)
-    options.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project", "scenes"};
+    options.other_scene_keys = rad::scene_file_sections();
     return options;
   }
 };

@@ -36,7 +36,7 @@ struct Options {
 rad::SceneRequest make_request(const std::string& path, const Options& o) {
   rad::SceneRequest request;
   request.path = path;
-  request.method = rad::parse_method(o.method);  // std::invalid_argument: ValueError
+  request.refine.method = rad::parse_method(o.method);  // std::invalid_argument: ValueError
   request.settings.quality = rad::parse_quality(o.quality);
   if (o.patch_size) request.settings.patch_size = *o.patch_size;
   if (o.max_level) request.settings.max_level = *o.max_level;

@@ -35,7 +35,6 @@ std::vector<Vec3d> sun_positions(const SkyPatches& frame, double spacing, const 
   const double step = spacing * M_PI / 180;
   const int rows = static_cast<int>(std::ceil(M_PI / 2 / step)) + 1;
   const int columns = static_cast<int>(std::ceil(2 * M_PI / step));
-  const Vec3d east = OpenMesh::cross(frame.north(), frame.up());
   // Each sun's cell (row, column of its lower-left node) and place in it.
   struct Cell {
     int row = -1, column = 0;
@@ -45,10 +44,10 @@ std::vector<Vec3d> sun_positions(const SkyPatches& frame, double spacing, const 
   std::vector<int> node(static_cast<std::size_t>(rows) * columns, -1);
   for (const Vec3d& s : hour_suns) {
     Cell c;
-    const double z = OpenMesh::dot(s, frame.up());
-    if (z > 0) {
-      const double a = std::asin(std::min(1.0, z)) / step;
-      double b = std::atan2(OpenMesh::dot(s, east), OpenMesh::dot(s, frame.north())) / step;
+    if (OpenMesh::dot(s, frame.up()) > 0) {
+      const auto [altitude, azimuth] = frame.altitude_azimuth(s);
+      const double a = altitude / step;
+      double b = azimuth / step;
       if (b < 0) b += columns;
       c.row = std::min(static_cast<int>(a), rows - 2);
       c.column = static_cast<int>(b) % columns;

@@ -36,13 +36,16 @@ Vec3d SkyPatches::direction(double altitude, double azimuth) const {
   return north_ * (c * std::cos(azimuth)) + east_ * (c * std::sin(azimuth)) + up_ * std::sin(altitude);
 }
 
+std::array<double, 2> SkyPatches::altitude_azimuth(const Vec3d& d) const {
+  return {std::asin(std::clamp(OpenMesh::dot(d, up_), -1.0, 1.0)),
+          std::atan2(OpenMesh::dot(d, east_), OpenMesh::dot(d, north_))};
+}
+
 std::size_t SkyPatches::index(const Vec3d& d) const {
-  const double z = OpenMesh::dot(d, up_);
-  if (!(z > 0)) return ground();
-  const double altitude = std::asin(std::min(1.0, z));
+  if (!(OpenMesh::dot(d, up_) > 0)) return ground();
+  const auto [altitude, azimuth] = altitude_azimuth(d);
   const auto row = static_cast<std::size_t>(altitude / row_height_);
   if (row >= per_row_.size()) return first_.back();  // the cap
-  double azimuth = std::atan2(OpenMesh::dot(d, east_), OpenMesh::dot(d, north_));
   const int count = per_row_[row];
   const double width = 2 * M_PI / count;
   // The first patch is centred on north: shift by half a patch.

@@ -15,6 +15,7 @@
 #include "mesh/types.h"
 
 #include <cstddef>
+#include <array>
 #include <vector>
 
 namespace dynrad::rad {
@@ -48,6 +49,9 @@ class SkyPatches {
   Bounds bounds(std::size_t i) const;
   // The unit direction at altitude and azimuth (radians).
   Vec3d direction(double altitude, double azimuth) const;
+  // Its inverse for a unit direction: altitude in [-pi/2, pi/2], azimuth in (-pi, pi]
+  // (clockwise from north, radians).
+  std::array<double, 2> altitude_azimuth(const Vec3d& d) const;
 
   const Vec3d& up() const { return up_; }
   const Vec3d& north() const { return north_; }

@@ -22,28 +22,6 @@ std::vector<std::string> scene_file_sections() {
 
 namespace {
 
-// The method, the quality's settings and the oracles' thresholds the request overrides.
-void refine_settings(const SceneRequest& request, RefineSettings& refine) {
-  refine = request.refine;
-  refine.method = request.method;
-  OracleThresholds& oracle = refine.dynamic;
-  if (request.threshold > 0) {
-    refine.adaptive_threshold = request.threshold;
-    oracle.cumulated_gradient = oracle.current_gradient = oracle.current_ratio = request.threshold;
-  }
-  oracle.variant = request.oracle;
-  if (request.cumulated_gradient >= 0) {
-    if (request.oracle == OracleThresholds::Variant::pushdown)
-      oracle.pushdown_cumulated_gradient = request.cumulated_gradient;
-    else
-      oracle.cumulated_gradient = request.cumulated_gradient;
-  }
-  if (request.current_gradient >= 0) oracle.current_gradient = request.current_gradient;
-  if (request.current_ratio >= 0) oracle.current_ratio = request.current_ratio;
-  if (!request.pushdown_ambient) oracle.pushdown_ambient = false;
-  refine.max_elements = request.max_elements;
-}
-
 // Light scenes: each control group's light in a channel of its own (design/
 // light_scenes.h); materials grey for the solve (PreparedScene::materials keeps them).
 void plan_light_scenes(PreparedScene& p) {
@@ -88,12 +66,12 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
   PreparedScene p;
   p.request = request;
   p.solve = request.solve;
-  refine_settings(request, p.refine);
+  p.refine = request.refine;
   p.grids = read_grids(request.path);
 
   // 1. Read and repair.
   ReadOptions read = request.read;
-  read.other_scene_keys = scene_file_sections();
+  read.other_scene_keys = scene_file_sections();  // whatever the host set: the sections this reads
   p.scene = loaded ? std::move(*loaded) : load_scene(request.path, request.cleanup, request.simplify, read);
   if (!loaded)
     for (const auto& w : p.scene.warnings) spdlog::warn("{}", w);

@@ -22,6 +22,7 @@
 #include "radiosity/analysis/grid.h"
 #include "radiosity/analysis/lit_scene.h"
 #include "radiosity/design/light_scenes.h"
+#include "radiosity/pipeline/scene_sections.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/sources/luminaire.h"
@@ -36,21 +37,23 @@ namespace dynrad::rad {
 
 enum class Units { automatic, photometric, radiometric };
 
+// RefineSettings with the dynamic method, `dynrad solve`'s default.
+inline RefineSettings dynamic_refine() {
+  RefineSettings r;
+  r.method = Method::dynamic;
+  return r;
+}
+
 // What a host asks for. Defaults are `dynrad solve`'s with no options.
 struct SceneRequest {
   std::string path;  // a model file, or a JSON scene file
   CleanupOptions cleanup;
   SimplifyOptions simplify;  // flat regions merged before patching: `dynrad solve` and the C ABI enable it
-  ReadOptions read;          // its other_scene_keys are the pipeline's (scene_file_sections())
-  Method method = Method::dynamic;
-  RefineSettings refine;  // the base the method and the thresholds below are set on
+  ReadOptions read;          // its other_scene_keys are set to scene_file_sections()
+  // The method, the oracle and its thresholds, the element limits; the settings below
+  // set the quality's levels and push-down thresholds on it (settings.h).
+  RefineSettings refine = dynamic_refine();
   SettingsRequest settings;  // the quality, and what the host sets of what is chosen from the model
-  // The oracles' thresholds (RefineSettings, OracleThresholds); < 0: the default.
-  double threshold = -1;  // adaptive's, and all three of the paper oracle's
-  OracleThresholds::Variant oracle = OracleThresholds::Variant::pushdown;
-  double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1;
-  bool pushdown_ambient = true;
-  std::size_t max_elements = 0;  // 0: no limit
   bool shadow_outlines = true;   // hard shadows' outlines as mesh edges (shadow_outlines.h)
   Units units = Units::automatic;
   // Stop rules, threads, seed, display options; on_shot and should_stop are the host's
@@ -59,10 +62,6 @@ struct SceneRequest {
   // Called after each shot with the running solver (for progress that shows its report).
   std::function<void(const Solver&, std::size_t shot, double unshot)> on_shot;
 };
-
-// The scene file's top-level sections the radiosity layer reads (beside "meshes" and
-// "materials", which mesh/ reads): what ReadOptions::other_scene_keys must hold.
-std::vector<std::string> scene_file_sections();
 
 // Everything up to the solve.
 struct PreparedScene {

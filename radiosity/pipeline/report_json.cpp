@@ -81,7 +81,7 @@ nlohmann::json solve_report_json(const PreparedScene& p, const SolvedScene& s, d
                  {"escaped", rgb_json(e.escaped)},
                  {"unshot", rgb_json(e.unshot)}};
   j["options"] = {{"converge", solve.converge},
-                  {"max_elements", p.request.max_elements},
+                  {"max_elements", refine.max_elements},
                   {"memory_budget_mib", static_cast<double>(refine.memory_budget) / (1024.0 * 1024.0)},
                   {"iterations", solve.max_iterations},
                   {"time_limit", solve.time_limit},

@@ -23,6 +23,7 @@
 #include "radiosity/analysis/views.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/solver/solver.h"
+#include "radiosity/pipeline/scene_sections.h"
 #include "radiosity/transfer/visibility.h"
 
 #include <cmath>
@@ -121,8 +122,7 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
 void load_and_solve(const std::string& path) {
   using namespace dynrad;
   ReadOptions read;
-  // as the command line reads scenes (plugin/cli/commands.h)
-  read.other_scene_keys = {"luminaires", "grids", "cameras", "sky", "observers", "routes", "open_areas", "project", "scenes"};
+  read.other_scene_keys = rad::scene_file_sections();  // as every host reads scenes
   (void)rad::read_grids(path);
   (void)rad::read_cameras(path);
   (void)rad::read_observers(path);
