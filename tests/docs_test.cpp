@@ -1,11 +1,17 @@
-// Everything a user can type is documented: every long option of every command (from
-// the command's own --help) and every key of the scene file (from the readers' own
-// "unknown key ... (known keys: ...)" errors, so no list here can drift from the code)
-// appears in README.md or docs/*.md.
+// Everything a user can type is documented, and the documentation holds together:
+// - every long option of a command (from the command's own --help) is on that command's
+//   page, docs/commands/COMMAND.md, and the README links to every command's page;
+// - every key of the scene file (from the readers' own "unknown key ... (known keys:
+//   ...)" errors, so no list here can drift from the code) is on some page;
+// - README.md stays a front page (at most 12,000 bytes) and no page of docs/ grows past
+//   15,000 bytes;
+// - every relative Markdown link in README.md and docs/**/*.md names a file that exists.
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -19,43 +25,103 @@ namespace {
 
 namespace fs = std::filesystem;
 
+const fs::path kRoot = DYNRAD_SOURCE_DIR;
+const std::vector<std::string> kCommands = {"solve", "grid",  "annual", "view", "probe",
+                                            "diff",  "info", "clean",  "plot", "validate"};
+
 std::string read(const fs::path& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
 }
 
-// README.md and every page of docs/.
+// README.md and every page under docs/, docs/commands/ included, in a fixed order.
+std::vector<fs::path> doc_pages() {
+  std::vector<fs::path> pages;
+  for (const auto& e : fs::recursive_directory_iterator(kRoot / "docs"))
+    if (e.is_regular_file() && e.path().extension() == ".md") pages.push_back(e.path());
+  std::sort(pages.begin(), pages.end());
+  pages.insert(pages.begin(), kRoot / "README.md");
+  return pages;
+}
+
 std::string all_docs() {
-  const fs::path root = DYNRAD_SOURCE_DIR;
-  std::string text = read(root / "README.md");
-  for (const auto& e : fs::directory_iterator(root / "docs"))
-    if (e.path().extension() == ".md") text += "\n" + read(e.path());
+  std::string text;
+  for (const fs::path& page : doc_pages()) text += "\n" + read(page);
   return text;
 }
 
-TEST(Docs, EveryCommandLineOptionIsDocumented) {
-  const std::string docs = all_docs();
+// The long options `dynrad COMMAND --help` lists (--help itself left out).
+std::vector<std::string> long_options(const std::string& command) {
+  const auto help = test::run_dynrad(command + " --help");
+  EXPECT_EQ(help.exit_code, 0) << command << "\n" << help.output;
   const std::regex option_line(R"(^\s+(?:-\w,)?(--[a-z0-9][a-z0-9-]*))");
+  std::vector<std::string> options;
+  std::istringstream lines(help.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, option_line) && m[1] != "--help") options.push_back(m[1]);
+  }
+  return options;
+}
+
+// `text` names `option` as a whole word: --pdf is not found in --pdf-width.
+bool mentions(const std::string& text, const std::string& option) {
+  return std::regex_search(text, std::regex(std::regex_replace(option, std::regex("-"), "\\-") + "(?![a-z0-9-])"));
+}
+
+TEST(Docs, EveryCommandHasAPageTheReadmeLinksTo) {
+  const std::string readme = read(kRoot / "README.md");
+  for (const std::string& command : kCommands) {
+    const std::string page = "docs/commands/" + command + ".md";
+    EXPECT_TRUE(fs::is_regular_file(kRoot / page)) << "dynrad " << command << " has no page " << page;
+    EXPECT_NE(readme.find("(" + page + ")"), std::string::npos) << "README.md does not link to " << page;
+  }
+}
+
+TEST(Docs, EveryCommandLineOptionIsOnItsCommandsPage) {
   std::size_t options = 0;
-  for (const char* command : {"solve", "grid", "annual", "view", "probe", "diff", "info", "clean", "plot", "validate"}) {
-    const auto help = test::run_dynrad(std::string(command) + " --help");
-    ASSERT_EQ(help.exit_code, 0) << command << "\n" << help.output;
-    std::istringstream lines(help.output);
-    std::string line;
-    std::size_t found = 0;
-    while (std::getline(lines, line)) {
-      std::smatch m;
-      if (!std::regex_search(line, m, option_line) || m[1] == "--help") continue;
-      ++found;
-      const std::regex mentioned(std::regex_replace(m[1].str(), std::regex("-"), "\\-") + R"((?![a-z0-9-]))");
-      EXPECT_TRUE(std::regex_search(docs, mentioned)) << "dynrad " << command << " " << m[1] << " is in no page of docs/";
-    }
-    EXPECT_GT(found, 0u) << command;
-    options += found;
+  for (const std::string& command : kCommands) {
+    const fs::path page = kRoot / "docs" / "commands" / (command + ".md");
+    const std::string text = read(page);
+    const std::vector<std::string> found = long_options(command);
+    for (const std::string& option : found)
+      EXPECT_TRUE(mentions(text, option)) << "dynrad " << command << " " << option << " is not on " << page.string();
+    EXPECT_GT(found.size(), 0u) << command;
+    options += found.size();
   }
   EXPECT_GT(options, 100u);
+}
+
+TEST(Docs, PagesStayShort) {
+  // The README is the front page; a topic or command page that grows past this is two.
+  constexpr std::uintmax_t kReadme = 12000, kPage = 15000;
+  for (const fs::path& page : doc_pages()) {
+    const std::uintmax_t limit = page.filename() == "README.md" && page.parent_path() == kRoot ? kReadme : kPage;
+    EXPECT_LE(fs::file_size(page), limit) << page.string() << " is over " << limit << " bytes";
+  }
+}
+
+TEST(Docs, EveryRelativeLinkPointsAtAFile) {
+  const std::regex fenced("```[\\s\\S]*?```");  // code blocks hold no links
+  const std::regex link(R"(\]\(([^)\s]+)\))");
+  const std::regex scheme("^[a-zA-Z][a-zA-Z0-9+.-]*:");
+  std::size_t links = 0;
+  for (const fs::path& page : doc_pages()) {
+    const std::string text = std::regex_replace(read(page), fenced, "");
+    for (std::sregex_iterator m(text.begin(), text.end(), link), end; m != end; ++m) {
+      const std::string target = (*m)[1];
+      if (std::regex_search(target, scheme)) continue;  // https:, mailto:
+      const std::string path = target.substr(0, target.find('#'));
+      if (path.empty()) continue;  // an anchor on the same page
+      ++links;
+      EXPECT_TRUE(fs::exists(page.parent_path() / path))
+          << page.string() << " links to " << target << ", and " << (page.parent_path() / path).lexically_normal().string()
+          << " does not exist";
+    }
+  }
+  EXPECT_GT(links, 50u);
 }
 
 // The keys a scene-file reader knows, from its error for an unknown key in `scene`.
