@@ -4,10 +4,13 @@
 // turns it into a status and a thread-local message: no exception crosses into C.
 #include "dynrad/dynrad.h"
 
-#include "mesh/error.h"
-#include "mesh/import.h"
+#include "plugin/capi/capi_report.h"
+#include "plugin/report/grid_picture.h"
+
+#include "mesh/core/error.h"
+#include "mesh/io/import.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/pipeline/pipeline.h"
 #include "radiosity/pipeline/report_json.h"
 #include "radiosity/solver/settings.h"
@@ -16,6 +19,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <cstring>
@@ -62,7 +67,13 @@ struct dynrad_result {
   std::vector<std::uint32_t> triangle_materials;
   std::vector<float> radiosity;
   std::vector<std::uint8_t> display;
+  std::vector<float> illuminance;  // per vertex: lx (photometric), else W/m^2 weighted as luminance
   dynrad_report report{};
+  // The solve itself, for dynrad_result_write_report (the solver's luminaires, the lit
+  // scene's views and checks). The solved scene refers to the prepared one: it goes first.
+  std::unique_ptr<dynrad::rad::PreparedScene> prepared;
+  std::unique_ptr<dynrad::rad::SolvedScene> solved;
+  std::string input;
 };
 
 namespace {
@@ -99,6 +110,9 @@ dynrad_status guarded(Body&& body) noexcept {
   } catch (const InputError& e) {
     t_last_error = e.what();
     return DYNRAD_INVALID_INPUT;
+  } catch (const OutputError& e) {
+    t_last_error = e.what();
+    return DYNRAD_OUTPUT_ERROR;
   } catch (const std::bad_alloc&) {
     t_last_error = "out of memory. Try a larger patch size or a smaller model.";
     return DYNRAD_OUT_OF_MEMORY;
@@ -185,7 +199,7 @@ PolygonSoup soup_from_arrays(const double* positions, size_t vertex_count, const
 std::unique_ptr<LoadedScene> build_loaded(const PolygonSoup& soup, bool merge_flat_regions = true,
                                           bool imprint = true) {
   // Flat regions merged before patching, as `dynrad solve` does by default, so that
-  // both give one answer (mesh/simplify.h; the result is a new mesh either way).
+  // both give one answer (mesh/repair/simplify.h; the result is a new mesh either way).
   SimplifyOptions simplify;
   simplify.enabled = merge_flat_regions;
   CleanupOptions cleanup;
@@ -244,10 +258,14 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   request.on_shot = [&](const rad::Solver&, std::size_t shot, double unshot) {
     if (progress && progress(shot, unshot, user) != 0) callback_stop = true;
   };
-  rad::PreparedScene prepared = rad::prepare_scene(request, loaded.get());
+  // On the heap and kept by the result, for its report; the lit scene (views, the
+  // designer's checks) only for scene files, whose reports have them.
+  auto kept_prepared = std::make_unique<rad::PreparedScene>(rad::prepare_scene(request, loaded.get()));
+  rad::PreparedScene& prepared = *kept_prepared;
   const double patch_size = prepared.applied.patch_size;
   const PatchingReport& patching = prepared.patching;
-  rad::SolvedScene solved = rad::solve_scene(prepared);
+  auto kept_solved = std::make_unique<rad::SolvedScene>(rad::solve_scene(prepared, !scene.path.empty()));
+  rad::SolvedScene& solved = *kept_solved;
   const rad::SolveReport& report = solved.report;
   const rad::Solver::Output& output = solved.output;
   const SceneMesh* mesh = prepared.scene.mesh.get();
@@ -268,6 +286,8 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   const VertexValues values = rad::tone_map(output.radiosity, exposure, "radiosity");
   result->radiosity.reserve(3 * vertices);
   result->display.reserve(3 * vertices);
+  result->illuminance.reserve(vertices);
+  for (const Rgb& e : output.irradiance) result->illuminance.push_back(static_cast<float>(e.luminance()));
   for (std::size_t x = 0; x < vertices; ++x) {
     const Rgb& b = output.radiosity[x];
     result->radiosity.insert(result->radiosity.end(),
@@ -307,6 +327,9 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   j["input"] = request.path;
   j["grids"] = rad::grid_summary_json(solved);
   result->report_json = j.dump(2);
+  result->input = request.path;
+  result->prepared = std::move(kept_prepared);
+  result->solved = std::move(kept_solved);
   return result.release();
 }
 
@@ -359,6 +382,8 @@ const char* dynrad_status_name(dynrad_status status) {
       return "DYNRAD_OUT_OF_MEMORY";
     case DYNRAD_INTERNAL_ERROR:
       return "DYNRAD_INTERNAL_ERROR";
+    case DYNRAD_OUTPUT_ERROR:
+      return "DYNRAD_OUTPUT_ERROR";
   }
   return "unknown status";
 }
@@ -660,6 +685,35 @@ dynrad_status dynrad_result_grid_points(const dynrad_result* result, size_t grid
                                         " points but " + std::to_string(points.size() / 4) +
                                         " are needed; size it from dynrad_result_grid_point_count.");
     if (!points.empty()) std::memcpy(xyze, points.data(), points.size() * sizeof(double));
+    return DYNRAD_OK;
+  });
+}
+
+dynrad_status dynrad_result_illuminance(const dynrad_result* result, float* lux, size_t capacity) {
+  return copy_out(result, &dynrad_result::illuminance, 1, dynrad_result_vertex_count(result), lux, capacity,
+                  "dynrad_result_illuminance");
+}
+
+dynrad_status dynrad_result_write_report(const dynrad_result* result, const char* path) {
+  return guarded([&] {
+    require(result && path && *path, "dynrad_result_write_report: result is NULL, or path is NULL or empty.");
+    capi::ReportInputs inputs;
+    inputs.prepared = result->prepared.get();
+    inputs.solved = result->solved.get();
+    inputs.exposure = result->report.exposure;
+    inputs.input = result->input;
+    inputs.version = DYNRAD_VERSION;
+    capi::write_report(path, inputs);
+    return DYNRAD_OK;
+  });
+}
+
+dynrad_status dynrad_false_colour(double t, uint8_t rgb[3]) {
+  return guarded([&] {
+    require(rgb, "dynrad_false_colour: rgb is NULL.");
+    require(std::isfinite(t), "dynrad_false_colour: t is not a finite number.");
+    const std::array<std::uint8_t, 3> c = report::false_colour(std::clamp(t, 0.0, 1.0));
+    std::copy(c.begin(), c.end(), rgb);
     return DYNRAD_OK;
   });
 }

@@ -13,16 +13,16 @@
 //                                share of occupied hours at 300 lx (the basis of sDA),
 //                                continuous DA, useful UDI, and the hours of direct sun
 //                                over 1000 lx (the basis of ASE)
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "plugin/cli/annual_meshes.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/grid_picture.h"
+#include "plugin/report/grid_picture.h"
 #include "plugin/cli/html_annual.h"
 #include "plugin/cli/npy.h"
-#include "plugin/cli/png.h"
+#include "plugin/report/png.h"
 #include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
 #include "radiosity/sources/daylight.h"
@@ -42,6 +42,7 @@
 #include <functional>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 namespace {
 
 struct AnnualCliOptions {

@@ -4,15 +4,15 @@
 // the lit PLY's radiosity (radiosity/analysis/grid.h). With --views or --html, also the views
 // (the scene's cameras, plans and rooms) and the one-file report; with --pdf, the
 // printable report (plugin/cli/pdf_report.h).
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/design_output.h"
-#include "plugin/cli/grid_output.h"
-#include "plugin/cli/html_report.h"
+#include "plugin/report/design_output.h"
+#include "plugin/report/grid_output.h"
+#include "plugin/report/html_report.h"
 #include "plugin/cli/pdf_report.h"
-#include "plugin/cli/view_output.h"
+#include "plugin/report/view_output.h"
 #include "plugin/cli/lit_mesh.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/design/light_scenes.h"
@@ -28,6 +28,7 @@
 #include <sstream>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 namespace {
 
 struct GridOptions {
@@ -41,7 +42,7 @@ struct GridOptions {
 };
 
 int run_grid(const GridOptions& options) {
-  // Observers, emergency routes, the project block (plugin/cli/design_output.h); light
+  // Observers, emergency routes, the project block (plugin/report/design_output.h); light
   // scenes are checked here too, before any work, though only a solve computes them.
   const bool design = check_design_inputs(options.model);
   const bool light_scenes = !rad::read_light_scenes(options.model, rad::read_luminaires(options.model)).empty();

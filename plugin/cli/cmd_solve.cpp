@@ -4,20 +4,20 @@
 // --time-limit) and the output is written; 2 bad input, output path or options; 3
 // interrupted (Ctrl-C or SIGTERM): the current solution is written all the same,
 // since progressive refinement is usable at any moment; 1 internal error.
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
-#include "mesh/io_util.h"
-#include "mesh/lit_decimate.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
+#include "mesh/io/lit_decimate.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/progress.h"
-#include "plugin/cli/design_output.h"
-#include "plugin/cli/grid_output.h"
-#include "plugin/cli/html_report.h"
+#include "plugin/report/design_output.h"
+#include "plugin/report/grid_output.h"
+#include "plugin/report/html_report.h"
 #include "plugin/cli/pdf_report.h"
-#include "plugin/cli/view_output.h"
-#include "plugin/cli/png.h"
+#include "plugin/report/view_output.h"
+#include "plugin/report/png.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/design/light_scenes.h"
 #include "radiosity/analysis/grid_scene.h"
@@ -47,6 +47,7 @@
 #include <optional>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 namespace {
 
 struct SolveCliOptions {
@@ -143,7 +144,7 @@ int run_solve(SolveCliOptions& options) {
   const bool automatic_views = options.views || !options.html.empty() || !options.pdf.empty();
   check_view_outputs(grid_prefix, cameras, automatic_views, options.html);
   if (!options.pdf.empty()) check_output_writable(options.pdf);
-  // Observers, emergency routes, the project block (plugin/cli/design_output.h).
+  // Observers, emergency routes, the project block (plugin/report/design_output.h).
   const bool design = check_design_inputs(options.load.input);
 
   request.cleanup = options.load.cleanup();
@@ -272,7 +273,7 @@ int run_solve(SolveCliOptions& options) {
   }
   std::size_t written_vertices = result.split.size(), written_triangles = mesh.face_count();
   if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles) {
-    // Too fine for a viewer: decimated within a colour bound (mesh/lit_decimate.h).
+    // Too fine for a viewer: decimated within a colour bound (mesh/io/lit_decimate.h).
     LitDecimateOptions decimate;
     decimate.max_triangles = options.max_triangles;
     const DecimatedLitMesh lighter = decimate_lit_scene(mesh, result.split, values, decimate);

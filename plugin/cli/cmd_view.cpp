@@ -3,16 +3,16 @@
 // inlined; plugin/cli/viewer/). Whoever receives the file opens it in a browser, offline,
 // with nothing to install.
 //
-// The .glb is read first (mesh/read_glb.h) and refused with the reason when a browser's
+// The .glb is read first (mesh/io/read_glb.h) and refused with the reason when a browser's
 // loader would fail on it, so that a page once written shows its model. Nothing is
 // written on refusal.
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
-#include "mesh/io_util.h"
-#include "mesh/read_glb.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
+#include "mesh/io/read_glb.h"
 #include "plugin/cli/commands.h"
-#include "plugin/cli/grid_picture.h"
-#include "plugin/cli/html_report.h"
+#include "plugin/report/grid_picture.h"
+#include "plugin/report/html_report.h"
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -21,6 +21,7 @@
 #include <string_view>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 
 namespace embedded {
 extern const std::string_view three_js, gltf_loader_js, viewer_js, viewer_page;

@@ -1,14 +1,15 @@
 // The annual daylight report as one HTML file (see html_annual.h).
 #include "plugin/cli/html_annual.h"
 
-#include "mesh/atomic_file.h"
-#include "plugin/cli/html_report.h"
+#include "mesh/io/atomic_file.h"
+#include "plugin/report/html_report.h"
 
 #include <fmt/format.h>
 
 #include <sstream>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 
 namespace {
 

@@ -11,7 +11,7 @@
 namespace dynrad::cli {
 
 // `report`: the JSON report of a solve or a grid run (the same object write_html_report
-// gets, plugin/cli/html_report.h). PNG pictures it names are read and drawn scaled to
+// gets, plugin/report/html_report.h). PNG pictures it names are read and drawn scaled to
 // the text width. Written atomically (no partial file on failure); OutputError when it
 // cannot be.
 void write_pdf_report(const std::string& path, const nlohmann::json& report);

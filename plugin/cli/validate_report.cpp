@@ -1,8 +1,8 @@
 #include "plugin/cli/validate_report.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/io_util.h"
-#include "plugin/cli/html_report.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/io/io_util.h"
+#include "plugin/report/html_report.h"
 
 #include <fmt/format.h>
 
@@ -15,6 +15,7 @@
 #include <vector>
 
 namespace dynrad::cli {
+using namespace dynrad::report;  // the report's writers (plugin/report/)
 
 namespace {
 

@@ -30,7 +30,7 @@ import threading
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
-from . import capi
+from . import capi, design_props, design_ui
 
 bl_info = {
     "name": "dynrad radiosity",
@@ -42,8 +42,7 @@ bl_info = {
     "category": "Lighting",
 }
 
-MAX_REFLECTANCE = 0.95
-DEFAULT_REFLECTANCE = 0.5  # faces without a material, as dynrad's importers do
+from .materials import DEFAULT_REFLECTANCE, MAX_REFLECTANCE, material_values  # noqa: F401 (the tests use them)
 
 
 # ---------------------------------------------------------------------------
@@ -181,34 +180,6 @@ def load_library(context):
 
 # ---------------------------------------------------------------------------
 # Reading the scene
-
-
-def _socket_value(node, name, default):
-    socket = node.inputs.get(name)
-    return socket.default_value if socket is not None else default
-
-
-def material_values(material):
-    """(reflectance rgb, emission rgb) of a Blender material; see the module comment."""
-    if material is None:
-        return (DEFAULT_REFLECTANCE,) * 3, (0.0, 0.0, 0.0)
-    reflectance, emission = tuple(material.diffuse_color[:3]), (0.0, 0.0, 0.0)
-    if material.use_nodes and material.node_tree:
-        output = next((n for n in material.node_tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output),
-                      None)
-        surface = output.inputs["Surface"] if output else None
-        shader = surface.links[0].from_node if surface is not None and surface.is_linked else None
-        if shader is not None and shader.type == "BSDF_PRINCIPLED":
-            reflectance = tuple(_socket_value(shader, "Base Color", (0.5, 0.5, 0.5, 1))[:3])
-            strength = _socket_value(shader, "Emission Strength", 1.0)
-            emission = tuple(c * strength for c in _socket_value(shader, "Emission", (0, 0, 0, 1))[:3])
-        elif shader is not None and shader.type == "EMISSION":
-            reflectance = (0.0, 0.0, 0.0)
-            strength = _socket_value(shader, "Strength", 1.0)
-            emission = tuple(c * strength for c in _socket_value(shader, "Color", (1, 1, 1, 1))[:3])
-    reflectance = tuple(min(max(float(c), 0.0), MAX_REFLECTANCE) for c in reflectance)
-    emission = tuple(max(float(c), 0.0) for c in emission)
-    return reflectance, emission
 
 
 class Soup:
@@ -454,9 +425,13 @@ def register():
         bpy.utils.register_class(cls)
     bpy.types.Scene.dynrad = PointerProperty(type=DynradSettings)
     bpy.types.VIEW3D_MT_object.append(menu_entry)
+    design_props.register()
+    design_ui.register()
 
 
 def unregister():
+    design_ui.unregister()
+    design_props.unregister()
     bpy.types.VIEW3D_MT_object.remove(menu_entry)
     del bpy.types.Scene.dynrad
     for cls in reversed(classes):

@@ -7,6 +7,7 @@ go through the standard library's `array` module (Debian's Blender has no numpy)
 import array
 import ctypes
 import ctypes.util
+import json
 import os
 
 ABI_VERSION = 1  # DYNRAD_ABI_VERSION of the header this binding follows
@@ -20,6 +21,7 @@ STATUS_NAMES = {
     -4: "DYNRAD_BUFFER_TOO_SMALL",
     -5: "DYNRAD_OUT_OF_MEMORY",
     -6: "DYNRAD_INTERNAL_ERROR",
+    -7: "DYNRAD_OUTPUT_ERROR",
 }
 OK, STOPPED = 0, 1
 STOP_REASONS = ("converged", "iterations", "time limit", "cancelled", "error target", "error floor")
@@ -127,6 +129,7 @@ class Library:
                 [_c_double_p, size, _c_uint32_p, _c_uint32_p, size, _c_uint32_p, ctypes.POINTER(Material), size,
                  ctypes.POINTER(handle)],
             ),
+            "dynrad_scene_load": (status, [ctypes.c_char_p, ctypes.POINTER(handle)]),
             "dynrad_scene_destroy": (None, [handle]),
             "dynrad_options_create": (status, [ctypes.POINTER(handle)]),
             "dynrad_options_destroy": (None, [handle]),
@@ -162,8 +165,19 @@ class Library:
             "dynrad_result_radiosity": (status, [handle, ctypes.POINTER(ctypes.c_float), size]),
             "dynrad_result_display": (status, [handle, ctypes.POINTER(ctypes.c_uint8), size]),
             "dynrad_result_report": (status, [handle, ctypes.POINTER(Report)]),
+            "dynrad_result_illuminance": (status, [handle, ctypes.POINTER(ctypes.c_float), size]),
+            "dynrad_result_report_json": (ctypes.c_char_p, [handle]),
+            "dynrad_result_grid_count": (size, [handle]),
+            "dynrad_result_grid_name": (ctypes.c_char_p, [handle, size]),
+            "dynrad_result_grid_point_count": (size, [handle, size]),
+            "dynrad_result_grid_points": (status, [handle, size, _c_double_p, size]),
+            "dynrad_result_write_report": (status, [handle, ctypes.c_char_p]),
+            "dynrad_false_colour": (status, [ctypes.c_double, ctypes.POINTER(ctypes.c_uint8)]),
         }
         for name, (restype, argtypes) in signatures.items():
+            if not hasattr(lib, name):
+                raise DynradError(-1, "%s has no %s: it is older than this add-on; use the library of the same "
+                                      "dynrad build." % (self.path, name))
             function = getattr(lib, name)
             function.restype = restype
             function.argtypes = argtypes
@@ -188,7 +202,10 @@ def _pointer(values, typecode, ctype):
 
 
 class Result:
-    """What a solve returns, copied out of the library into array.array buffers."""
+    """What a solve returns, copied out of the library into array.array buffers: the
+    refined mesh with per-vertex radiosity, display colours and illuminance, the report
+    (dict, and `report_json`: the library's JSON report parsed) and per grid of a scene
+    file its name and points (`grids`: list of (name, array of x y z E))."""
 
     def __init__(self, library, handle, stopped):
         count_v = library.dynrad_result_vertex_count(handle)
@@ -207,6 +224,19 @@ class Result:
         ):
             if count:
                 library.check(function(handle, (ctype * len(buffer)).from_buffer(buffer), count))
+        self.illuminance = array.array("f", bytes(4 * count_v))
+        if count_v:
+            library.check(library.dynrad_result_illuminance(
+                handle, (ctypes.c_float * count_v).from_buffer(self.illuminance), count_v))
+        self.report_json = json.loads(library.dynrad_result_report_json(handle).decode() or "{}")
+        self.grids = []
+        for grid in range(library.dynrad_result_grid_count(handle)):
+            count = library.dynrad_result_grid_point_count(handle, grid)
+            points = array.array("d", bytes(8 * 4 * count))
+            if count:
+                library.check(library.dynrad_result_grid_points(
+                    handle, grid, (ctypes.c_double * len(points)).from_buffer(points), count))
+            self.grids.append((library.dynrad_result_grid_name(handle, grid).decode(), points))
         report = Report()
         library.check(library.dynrad_result_report(handle, ctypes.byref(report)))
         self.report = {name: getattr(report, name) for name, _ in Report._fields_}
@@ -227,6 +257,56 @@ class Result:
 # The names dynrad_options_set_oracle_threshold takes.
 ORACLE_THRESHOLDS = ("cumulated_gradient", "current_gradient", "current_ratio", "pushdown_error", "pushdown_floor",
                      "pushdown_ambient")
+
+
+def false_colour(library, t):
+    """The report's false-colour scale at t in [0, 1]: (r, g, b) bytes, sRGB."""
+    rgb = (ctypes.c_uint8 * 3)()
+    library.check(library.dynrad_false_colour(float(t), rgb))
+    return tuple(rgb)
+
+
+def _apply_options(library, c_options, options):
+    for name, value in options.items():
+        if name in ORACLE_THRESHOLDS:
+            library.check(library.dynrad_options_set_oracle_threshold(c_options, name.encode(), float(value)))
+            continue
+        setter = getattr(library, "dynrad_options_set_" + name, None)
+        if setter is None:
+            raise DynradError(-1, "unknown option '%s'" % name)
+        library.check(setter(c_options, value.encode() if isinstance(value, str) else value))
+
+
+def solve_file(library, path, options, report_path=None, progress=None, cancel=None):
+    """Loads a scene file (dynrad_scene_load: as `dynrad solve` reads it) and solves it
+    with `options` (as for solve()). With `report_path`, also writes the HTML lighting
+    report there (dynrad_result_write_report), with its pictures beside it, before the
+    result is released. Returns a Result."""
+    scene = ctypes.c_void_p()
+    library.check(library.dynrad_scene_load(path.encode(), ctypes.byref(scene)))
+    c_options = ctypes.c_void_p()
+    result = ctypes.c_void_p()
+    try:
+        library.check(library.dynrad_options_create(ctypes.byref(c_options)))
+        _apply_options(library, c_options, options)
+
+        def on_progress(shot, unshot, _user):
+            try:
+                return 1 if progress and progress(shot, unshot) else 0
+            except Exception:  # an exception cannot cross C; stop the solve instead
+                return 1
+
+        callback = PROGRESS_FN(on_progress)
+        cancel_pointer = ctypes.pointer(cancel) if cancel is not None else None
+        status = library.check(library.dynrad_solve(scene, c_options, callback, None, cancel_pointer,
+                                                    ctypes.byref(result)))
+        if report_path:
+            library.check(library.dynrad_result_write_report(result, report_path.encode()))
+        return Result(library, result, status == STOPPED)
+    finally:
+        library.dynrad_result_destroy(result)
+        library.dynrad_options_destroy(c_options)
+        library.dynrad_scene_destroy(scene)
 
 
 def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials, materials, options,
@@ -266,14 +346,7 @@ def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials,
     result = ctypes.c_void_p()
     try:
         library.check(library.dynrad_options_create(ctypes.byref(c_options)))
-        for name, value in options.items():
-            if name in ORACLE_THRESHOLDS:
-                library.check(library.dynrad_options_set_oracle_threshold(c_options, name.encode(), float(value)))
-                continue
-            setter = getattr(library, "dynrad_options_set_" + name, None)
-            if setter is None:
-                raise DynradError(-1, "unknown option '%s'" % name)
-            library.check(setter(c_options, value.encode() if isinstance(value, str) else value))
+        _apply_options(library, c_options, options)
 
         def on_progress(shot, unshot, _user):
             try:

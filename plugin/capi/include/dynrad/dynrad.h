@@ -60,7 +60,8 @@ typedef enum dynrad_status {
   DYNRAD_NO_EMITTER = -3,       /* no polygon emits light: everything would be black */
   DYNRAD_BUFFER_TOO_SMALL = -4, /* a copy function's capacity is below the size query's answer */
   DYNRAD_OUT_OF_MEMORY = -5,
-  DYNRAD_INTERNAL_ERROR = -6 /* a bug: please report it with the input */
+  DYNRAD_INTERNAL_ERROR = -6, /* a bug: please report it with the input */
+  DYNRAD_OUTPUT_ERROR = -7    /* a file could not be written (missing directory, permission, disk full) */
 } dynrad_status;
 
 /* "0.1.0": the library's version. */
@@ -206,6 +207,11 @@ DYNRAD_API dynrad_status dynrad_result_triangle_materials(const dynrad_result* r
                                                           size_t capacity);
 /* Per vertex: radiosity, linear rgb (3 floats), W/m^2. */
 DYNRAD_API dynrad_status dynrad_result_radiosity(const dynrad_result* result, float* rgb, size_t capacity);
+/* Per vertex: the light arriving on the front side (1 float): illuminance in lx in
+ * photometric solves (a scene file with luminaires or a sky, as `dynrad solve` writes
+ * its PLY's `illuminance`), otherwise irradiance in W/m^2 weighted as luminance
+ * (0.2126 r + 0.7152 g + 0.0722 b). */
+DYNRAD_API dynrad_status dynrad_result_illuminance(const dynrad_result* result, float* lux, size_t capacity);
 /* Per vertex: display colour (3 bytes), sRGB-encoded radiosity x exposure, the same
  * bytes the command line writes as red/green/blue in its PLY. */
 DYNRAD_API dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity);
@@ -255,6 +261,22 @@ DYNRAD_API const char* dynrad_result_grid_name(const dynrad_result* result, size
 DYNRAD_API size_t dynrad_result_grid_point_count(const dynrad_result* result, size_t grid);
 DYNRAD_API dynrad_status dynrad_result_grid_points(const dynrad_result* result, size_t grid, double* xyze,
                                                    size_t capacity);
+
+/* Writes the lighting report as `dynrad solve --html` does: one HTML page at `path`
+ * (the solve's facts, the light sources, each grid's figures and false-colour plan, the
+ * views in true and false colour, the designer's checks), with the files it embeds
+ * beside it, named after it as the command line names them after its output:
+ * STEM_grids.json, STEM_grid_NAME.csv and .png, STEM_view_NAME.png and
+ * STEM_view_NAME_luminance.png (STEM: path without its extension). Views and checks
+ * need a scene file (dynrad_scene_load); a scene made from arrays gets the solve's
+ * facts. Every path is checked before anything is written: DYNRAD_OUTPUT_ERROR naming
+ * the file that cannot be, and nothing written. Existing files are replaced. */
+DYNRAD_API dynrad_status dynrad_result_write_report(const dynrad_result* result, const char* path);
+
+/* The report's false-colour scale (dark blue, blue, cyan, green, yellow, red) at t in
+ * [0, 1] (clamped), as 3 sRGB bytes, so that a host's false colours match the report's
+ * plans. DYNRAD_INVALID_ARGUMENT for a NULL rgb or a t that is not finite. */
+DYNRAD_API dynrad_status dynrad_false_colour(double t, uint8_t rgb[3]);
 
 #ifdef __cplusplus
 }

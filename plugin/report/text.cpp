@@ -1,6 +1,6 @@
 // FreeType rasterises each glyph to an 8-bit coverage bitmap; it is blended into the
 // image with the colour.
-#include "plugin/cli/text.h"
+#include "plugin/report/text.h"
 
 #include <ft2build.h>
 #include FT_FREETYPE_H
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 namespace {
 
@@ -88,4 +88,4 @@ int TextRenderer::draw(rad::Image& image, int x, int y, const std::string& text,
   return pen - x;
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

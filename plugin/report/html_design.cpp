@@ -1,13 +1,13 @@
 // The designer's checks in the HTML report (see html_design.h).
-#include "plugin/cli/html_design.h"
+#include "plugin/report/html_design.h"
 
-#include "plugin/cli/html_report.h"
+#include "plugin/report/html_report.h"
 
 #include <fmt/format.h>
 
 #include <sstream>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 namespace {
 
@@ -140,4 +140,4 @@ std::string html_design_sections(const json& r) {
   return h.str();
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -1,8 +1,8 @@
 // The designer's checks as report sections (see design_output.h).
-#include "plugin/cli/design_output.h"
+#include "plugin/report/design_output.h"
 
-#include "mesh/error.h"
-#include "plugin/cli/grid_output.h"
+#include "mesh/core/error.h"
+#include "plugin/report/grid_output.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/glare.h"
 #include "radiosity/design/room_checks.h"
@@ -15,7 +15,7 @@
 #include <ctime>
 #include <set>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 namespace {
 
@@ -220,4 +220,4 @@ void add_design_checks(json& report, const std::string& scene_path, const rad::L
   }
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 // Each file the grids will write can be written (OutputError otherwise), before any work.
 void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSpec>& grids);
@@ -23,4 +23,4 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
 // A grid's targets as the reports show them: {"Eavg": E, "U0": u}, either or both, or {}.
 nlohmann::json grid_target_json(const rad::GridSpec& g);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 // Reads every section the checks need from the scene file, so that bad input stops the
 // run before any work (InputError naming the file and the entry). True when it declares
@@ -36,4 +36,4 @@ nlohmann::json light_scene_results(const std::vector<rad::LightScene>& scenes, c
 // schedule's facts (file, group, watts, maintenance factor, emergency share).
 nlohmann::json luminaire_json(const rad::Luminaire& l);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

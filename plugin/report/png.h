@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 // The PNG file's bytes.
 std::string encode_png(const rad::Image& image);
@@ -14,4 +14,4 @@ std::string encode_png(const rad::Image& image);
 // Throws OutputError when the file cannot be written.
 void write_png(const std::string& path, const rad::Image& image);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

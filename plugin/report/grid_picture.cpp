@@ -1,4 +1,4 @@
-#include "plugin/cli/grid_picture.h"
+#include "plugin/report/grid_picture.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 const std::array<std::array<double, 3>, 6>& false_colour_stops() {
   static const std::array<std::array<double, 3>, 6> stops{{{0.05, 0.05, 0.45},
@@ -175,4 +175,4 @@ std::string target_text(const rad::GridResult& grid, const std::string& unit) {
   return "target " + wanted + (missed.empty() ? ": met" : ": NOT met (" + missed + ")");
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 class TextRenderer {
  public:
@@ -34,4 +34,4 @@ class TextRenderer {
   int pixel_height_;
 };
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -1,16 +1,16 @@
-#include "plugin/cli/view_output.h"
+#include "plugin/report/view_output.h"
 
-#include "mesh/atomic_file.h"
-#include "plugin/cli/grid_picture.h"
-#include "plugin/cli/png.h"
-#include "plugin/cli/text.h"
+#include "mesh/io/atomic_file.h"
+#include "plugin/report/grid_picture.h"
+#include "plugin/report/png.h"
+#include "plugin/report/text.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 rad::Image luminance_picture(const rad::RenderedView& rendered, const rad::View& view, bool photometric, double* top_out) {
   std::vector<double> lit;
@@ -130,4 +130,4 @@ std::vector<Viewpoint> viewpoints(const rad::View& start, const std::vector<rad:
   return out;
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

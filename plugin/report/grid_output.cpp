@@ -1,14 +1,13 @@
-#include "plugin/cli/grid_output.h"
+#include "plugin/report/grid_output.h"
 
-#include "mesh/atomic_file.h"
-#include "plugin/cli/commands.h"
-#include "plugin/cli/grid_picture.h"
-#include "plugin/cli/png.h"
+#include "mesh/io/atomic_file.h"
+#include "plugin/report/grid_picture.h"
+#include "plugin/report/png.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 void check_grid_outputs(const std::string& prefix, const std::vector<rad::GridSpec>& grids) {
   if (grids.empty()) return;
@@ -93,4 +92,4 @@ nlohmann::json write_grid_results(const std::string& prefix, const std::string& 
   return results;
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -8,9 +8,9 @@
 
 #include <string>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
-// `report`: the JSON report of the solve (see cmd_solve.cpp), whose "grids" and "views"
+// `report`: the JSON report of the solve (plugin/cli/cmd_solve.cpp, or the C ABI's dynrad_result_write_report), whose "grids" and "views"
 // entries name their PNG files; those are read and embedded. Written atomically;
 // OutputError when it cannot be.
 void write_html_report(const std::string& path, const nlohmann::json& report);
@@ -21,4 +21,4 @@ std::string html_escape(const std::string& text);
 // Standard base64 with '=' padding.
 std::string base64(const std::string& bytes);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -1,10 +1,10 @@
-#include "plugin/cli/html_report.h"
+#include "plugin/report/html_report.h"
 
-#include "plugin/cli/html_design.h"
+#include "plugin/report/html_design.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
-#include "mesh/io_util.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
 
 #include <boost/archive/iterators/base64_from_binary.hpp>
 #include <boost/archive/iterators/transform_width.hpp>
@@ -12,7 +12,7 @@
 
 #include <sstream>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 std::string html_escape(const std::string& text) {
   std::string out;
@@ -226,4 +226,4 @@ void write_html_report(const std::string& path, const json& r) {
   file.commit();
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

@@ -3,13 +3,13 @@
 // above it.
 #pragma once
 
-#include "plugin/cli/text.h"
+#include "plugin/report/text.h"
 #include "radiosity/analysis/grid.h"
 #include "radiosity/analysis/render.h"
 
 #include <string>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 // The colour of t in [0, 1] on the false-colour scale: dark blue, blue, cyan, green,
 // yellow, red.
@@ -38,4 +38,4 @@ std::string target_text(const rad::GridResult& grid, const std::string& unit);
 // `unit`: "lx" or "W/m2".
 rad::Image grid_picture(const rad::GridResult& grid, const std::string& unit);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

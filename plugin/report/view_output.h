@@ -3,7 +3,7 @@
 // scene's units, PREFIX_view_NAME.png and PREFIX_view_NAME_luminance.png.
 #pragma once
 
-#include "mesh/export.h"
+#include "mesh/io/export.h"
 #include "radiosity/analysis/views.h"
 
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 
 struct ViewPictures {
   rad::View view;
@@ -41,4 +41,4 @@ nlohmann::json views_json(const std::vector<ViewPictures>& views);
 // then the other perspective views (plans, being orthographic, are left out).
 std::vector<Viewpoint> viewpoints(const rad::View& start, const std::vector<rad::View>& others);
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report

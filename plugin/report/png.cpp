@@ -1,11 +1,11 @@
-#include "plugin/cli/png.h"
+#include "plugin/report/png.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 
 #include <png.h>
 
-namespace dynrad::cli {
+namespace dynrad::report {
 namespace {
 
 void append(png_structp png, png_bytep data, png_size_t length) {
@@ -45,4 +45,4 @@ void write_png(const std::string& path, const rad::Image& image) {
   file.commit();
 }
 
-}  // namespace dynrad::cli
+}  // namespace dynrad::report
