@@ -5,7 +5,7 @@
 //
 // Usage: bench_accuracy [converge] (default 0.001)
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/solver.h"
 

@@ -6,8 +6,8 @@
 // the merge tolerance. The reference in the same process is building the OpenMesh
 // half-edge mesh from the already clean result, so the printed ratio says what
 // cleanup costs relative to merely loading a clean mesh.
-#include "mesh/cleanup.h"
-#include "mesh/scene_mesh.h"
+#include "mesh/repair/cleanup.h"
+#include "mesh/core/scene_mesh.h"
 
 #include <benchmark/benchmark.h>
 

@@ -13,7 +13,7 @@
 //
 // Usage: bench_paper_tables [table...]   (default: 1 2 3 4)
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/compare.h"
 #include "radiosity/solver/solver.h"
 

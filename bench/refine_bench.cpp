@@ -10,7 +10,7 @@
 // Usage: bench_refine [samples/globillum_room.obj]
 #include "bench/median.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 
 #include <malloc.h>
 

@@ -12,7 +12,7 @@
 //        build/bench/bench_scale /tmp/b100k.obj
 #include "bench/median.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/solver.h"
 
 #include <tbb/info.h>

@@ -19,7 +19,7 @@
 // Usage: bench_storey [repeats (3)] [model (samples/storey.obj)] [layout (…_layout.json)]
 #include "bench/median.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/transfer/visibility.h"
 

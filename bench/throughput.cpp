@@ -17,7 +17,7 @@
 //   (default: samples/globillum_room_obstructed.obj, 0.5, dynamic; to 1% unshot)
 #include "bench/median.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/solver.h"
 
 #include <tbb/parallel_for.h>

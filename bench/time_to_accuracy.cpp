@@ -12,7 +12,7 @@
 // of it unless "f" gives the floor), "w" the overshoot, "flat:" rows shoot evenly from each patch (--flat-senders).
 // Run it from build/bench (the reference cache goes there).
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/solver.h"
 

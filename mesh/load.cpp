@@ -1,9 +1,9 @@
 #include "mesh/load.h"
 
-#include "mesh/error.h"
-#include "mesh/import.h"
-#include "mesh/openings.h"
-#include "mesh/polygon_triangulation.h"
+#include "mesh/core/error.h"
+#include "mesh/io/import.h"
+#include "mesh/core/openings.h"
+#include "mesh/core/polygon_triangulation.h"
 
 #include <cmath>
 #include <limits>

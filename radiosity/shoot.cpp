@@ -162,7 +162,7 @@ bool Solver::pick_sender(Rgb& shot) {
   return true;
 }
 
-Solver::ShotRules Solver::shot_rules(std::uint32_t i) {
+ShotRules Solver::shot_rules(std::uint32_t i) {
   // A luminaire's light is the sharpest a surface receives (a point source's pool,
   // a beam's edge) and the most of it: its shots may refine further, to a tighter
   // push-down error (RefineSettings::luminaire_levels, luminaire_pushdown).

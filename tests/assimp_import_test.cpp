@@ -1,4 +1,4 @@
-// Models through assimp (mesh/read_assimp.cpp): an IFC house from Debian's assimp test
+// Models through assimp (mesh/io/read_assimp.cpp): an IFC house from Debian's assimp test
 // models, a lit model's own .glb read back, and broken files refused by name.
 #include "test_support.h"
 

@@ -1,7 +1,7 @@
 // `dynrad view`: the walk-through page. ViewCommand checks what the command writes and
 // refuses; BrowserView opens the page in headless Chromium (Debian's chromium, software
 // WebGL through SwiftShader) and looks at the picture it draws.
-#include "mesh/read_glb.h"
+#include "mesh/io/read_glb.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -218,7 +218,7 @@ TEST(BrowserView, PageShowsTheLitModelAsDynradRendersIt) {
 }
 
 // Where a colour lies on the false-colour scale, t in [0, 1]: the nearest of 501 colours
-// along the report's scale (plugin/cli/grid_picture.cpp's stops).
+// along the report's scale (plugin/report/grid_picture.cpp's stops).
 double scale_position(const std::uint8_t* rgb) {
   static const double stops[6][3] = {{0.05, 0.05, 0.45}, {0.0, 0.35, 1.0}, {0.0, 0.85, 0.9},
                                      {0.2, 0.8, 0.2},    {1.0, 0.9, 0.0},  {0.9, 0.1, 0.1}};

@@ -1,5 +1,5 @@
-#include "mesh/cleanup.h"
-#include "mesh/scene_mesh.h"
+#include "mesh/repair/cleanup.h"
+#include "mesh/core/scene_mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

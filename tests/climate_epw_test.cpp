@@ -3,7 +3,7 @@
 // of bad file refused with its line and what to do.
 #include "radiosity/climate/epw.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "synthetic_weather.h"
 
 #include <gtest/gtest.h>

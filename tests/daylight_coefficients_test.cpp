@@ -3,7 +3,7 @@
 // product of an hour's sky vector with the coefficients is the direct computation of
 // that hour's sky.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/climate/coefficient_solve.h"
 #include "radiosity/climate/daylight_coefficients.h"
 #include "radiosity/climate/sky_patches.h"

@@ -2,7 +2,7 @@
 // sun's position against published ones, the sky through a roof opening against
 // pi L F, a sun beam through a window where the geometry puts it, and glazing's
 // transmittance scaling the light inside.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/sources/glass.h"

@@ -1,6 +1,6 @@
 // The lighting designer's checks (radiosity/design/): cylindrical illuminance, EN 12464-1
 // room surfaces, EN 1838 routes, against closed forms computed here.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/design/check.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/light_scenes.h"

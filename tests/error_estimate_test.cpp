@@ -4,7 +4,7 @@
 // 0.1% standard error per point) and the furnace's closed form. The estimate is what
 // the defaults stop by, so it must not promise more than the solve delivers.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"

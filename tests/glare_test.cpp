@@ -2,7 +2,7 @@
 // index table, the formula by hand for one luminaire of known luminance, and facts the
 // tabular method must keep (symmetry, flux scaling, reflectances).
 #include "radiosity/design/glare.h"
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

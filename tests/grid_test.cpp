@@ -1,6 +1,6 @@
 // Calculation grids (radiosity/analysis/grid.h) against closed forms and hand-computed figures.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/grid.h"
 #include "radiosity/analysis/grid_scene.h"
 #include "radiosity/analysis/probe.h"

@@ -1,5 +1,5 @@
-#include "mesh/error.h"
-#include "mesh/import.h"
+#include "mesh/core/error.h"
+#include "mesh/io/import.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

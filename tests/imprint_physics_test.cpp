@@ -2,7 +2,7 @@
 // its walls lights as the same room modelled cleanly, a box standing on a floor as the
 // floor cut around it, for every method; hidden parts take no light.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/solver.h"
 #include "scene_builder.h"

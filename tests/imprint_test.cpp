@@ -1,8 +1,8 @@
 // Imprinting, hidden parts and flattening in cleanup: geometric facts on scenes built as
 // architects' models are (solids standing on and passing through each other).
-#include "mesh/cleanup.h"
-#include "mesh/import.h"
-#include "mesh/scene_mesh.h"
+#include "mesh/repair/cleanup.h"
+#include "mesh/io/import.h"
+#include "mesh/core/scene_mesh.h"
 #include "scene_builder.h"
 #include "test_support.h"
 

@@ -20,15 +20,17 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kRoot = DYNRAD_SOURCE_DIR;
 
-// The part of the project a file belongs to: "mesh", "plugin", or "radiosity/FOLDER".
+// The part of the project a file belongs to: "plugin", "mesh/FOLDER" or "radiosity/FOLDER";
+// "mesh" for mesh/load.*, the input path above mesh/'s three libraries.
 std::string layer_of(const std::string& path) {
   const auto slash = path.find('/');
   const std::string top = path.substr(0, slash);
-  if (top != "radiosity") return top;
+  if (top != "radiosity" && top != "mesh") return top;
   const auto next = path.find('/', slash + 1);
+  if (next != std::string::npos) return path.substr(0, next);
   // radiosity/shoot.cpp, the paper's Figure 5, is the solver's (at the top, where a
   // reader starts).
-  return next == std::string::npos ? "radiosity/solver" : path.substr(0, next);
+  return top == "mesh" ? "mesh" : "radiosity/solver";
 }
 
 std::vector<fs::path> sources_under(const std::string& folder) {
@@ -47,8 +49,11 @@ std::string read(const fs::path& path) {
 }
 
 TEST(Layering, EveryIncludePointsDownTheLayers) {
-  const std::map<std::string, std::set<std::string>> allowed = {
+  std::map<std::string, std::set<std::string>> allowed = {
       {"mesh", {"mesh"}},
+      {"mesh/core", {"mesh/core"}},
+      {"mesh/repair", {"mesh/core", "mesh/repair"}},
+      {"mesh/io", {"mesh/core", "mesh/io"}},
       {"radiosity/transfer", {"mesh", "radiosity/transfer"}},
       {"radiosity/sources", {"mesh", "radiosity/transfer", "radiosity/sources"}},
       {"radiosity/solver", {"mesh", "radiosity/transfer", "radiosity/sources", "radiosity/solver"}},
@@ -64,6 +69,9 @@ TEST(Layering, EveryIncludePointsDownTheLayers) {
        {"mesh", "radiosity/transfer", "radiosity/sources", "radiosity/solver", "radiosity/analysis",
         "radiosity/design", "radiosity/pipeline"}},
   };
+  // "mesh" above: all of mesh/ (its three libraries and load.h, which uses them all).
+  for (auto& [layer, uses] : allowed)
+    if (uses.erase("mesh") > 0) uses.insert({"mesh", "mesh/core", "mesh/repair", "mesh/io"});
   const std::regex include(R"re(#include\s+"((mesh|radiosity|plugin)/[^"]+)")re");
   std::size_t files = 0, includes = 0;
   for (const char* folder : {"mesh", "radiosity"})

@@ -1,9 +1,9 @@
-// Lines inserted into the mesh as edges (mesh/line_insertion.h): the line's edges cover
+// Lines inserted into the mesh as edges (mesh/core/line_insertion.h): the line's edges cover
 // exactly the segment, the mesh stays conforming with no empty triangle, and the line
 // survives refinement (both halves of a split line edge stay on it).
-#include "mesh/line_insertion.h"
+#include "mesh/core/line_insertion.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "scene_builder.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
-// Decimation of lit meshes for viewers (mesh/lit_decimate.h): the surface, its outline
+// Decimation of lit meshes for viewers (mesh/io/lit_decimate.h): the surface, its outline
 // and its creases stay where they were, no face flips, and at every input vertex the
 // colour shown stays within the bound, measured here independently (each input vertex
 // found in the output triangles and interpolated there).
-#include "mesh/lit_decimate.h"
-#include "mesh/read_glb.h"
+#include "mesh/io/lit_decimate.h"
+#include "mesh/io/read_glb.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

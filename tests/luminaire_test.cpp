@@ -2,7 +2,7 @@
 // the solver's illuminance on surfaces, with the settings `dynrad solve` chooses, at
 // points the test picks, against formulas evaluated here.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/settings.h"

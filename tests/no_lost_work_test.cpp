@@ -1,4 +1,4 @@
-// No lost work (docs/solve.md, "Exit codes"): an output is only ever replaced by a complete
+// No lost work (docs/commands/solve.md, "Exit codes"): an output is only ever replaced by a complete
 // one. A run that fails, before or after loading, or that is killed, leaves every
 // existing output (mesh, report, preview) as it was, and no temporary file behind.
 #include "test_support.h"

@@ -1,4 +1,4 @@
-// Openings (mesh/openings.h): the holes light comes in through, and nothing else.
+// Openings (mesh/core/openings.h): the holes light comes in through, and nothing else.
 #include "mesh/load.h"
 #include "scene_builder.h"
 

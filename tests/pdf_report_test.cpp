@@ -2,7 +2,7 @@
 // the storey sample, read back with poppler's pdfinfo and pdftotext, and the writer
 // alone on a report without optional sections and on one with every section.
 #include "plugin/cli/pdf_report.h"
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // tables' arithmetic against values worked by hand, the sky's clearness and brightness
 // for known hours, the forms where they coincide with CIE skies, the scaling to the
 // hour's diffuse illuminance, the safeguards, and the "perez" sky of a scene file.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/perez.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/sources/luminaire.h"

@@ -4,7 +4,7 @@
 // with its name, line and what to do. Every file is written here.
 #include "radiosity/sources/photometry.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

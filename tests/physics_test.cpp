@@ -1,8 +1,8 @@
 // Physics of the progressive solver: closed-form furnace answers, energy conservation
 // after every shot, no light through a wall, colour bleeding where it belongs.
-#include "mesh/cleanup.h"
+#include "mesh/repair/cleanup.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
 #include "radiosity/solver/solver.h"
 #include "test_support.h"

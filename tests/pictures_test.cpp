@@ -4,7 +4,7 @@
 // neighbours by a hair (the second difference over one element); a streak or a blotch is
 // a vertex well outside the range of the ring of vertices around it.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "test_support.h"

@@ -1,7 +1,7 @@
 // Invariants of conforming refinement, over every sample and over random refinement
 // sequences with fixed seeds.
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

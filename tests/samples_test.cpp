@@ -1,6 +1,6 @@
 // Every bundled sample loads, needs no repair (but the Cornell red wall's flattening), is
 // conforming and manifold, and has the sizes its published description gives.
-#include "mesh/import.h"
+#include "mesh/io/import.h"
 #include "mesh/load.h"
 #include "test_support.h"
 

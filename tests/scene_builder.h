@@ -2,7 +2,7 @@
 // them (closed solids facing outward, rooms facing inward, sheets).
 #pragma once
 
-#include "mesh/soup.h"
+#include "mesh/core/soup.h"
 
 #include <array>
 #include <string>

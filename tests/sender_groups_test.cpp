@@ -1,9 +1,9 @@
-// Sender groups (mesh/plane_groups.h, Solver's "Sender groups"): which patches group,
+// Sender groups (mesh/core/plane_groups.h, Solver's "Sender groups"): which patches group,
 // and that a group sends exactly the light its patches would have sent one by one.
-#include "mesh/face_clusters.h"
+#include "mesh/core/face_clusters.h"
 #include "mesh/load.h"
-#include "mesh/plane_groups.h"
-#include "mesh/refinement.h"
+#include "mesh/core/plane_groups.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "scene_builder.h"

@@ -1,7 +1,7 @@
-// Lossless simplification of flat regions (mesh/simplify.h): same surface, same area
+// Lossless simplification of flat regions (mesh/repair/simplify.h): same surface, same area
 // per material, same openings and material borders, far fewer triangles, a conforming
 // mesh, and the same lighting.
-#include "mesh/simplify.h"
+#include "mesh/repair/simplify.h"
 #include "mesh/load.h"
 #include "test_support.h"
 

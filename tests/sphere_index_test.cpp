@@ -1,5 +1,5 @@
-// SphereIndex (mesh/sphere_index.h) against a loop over every ball.
-#include "mesh/sphere_index.h"
+// SphereIndex (mesh/core/sphere_index.h) against a loop over every ball.
+#include "mesh/core/sphere_index.h"
 
 #include <gtest/gtest.h>
 

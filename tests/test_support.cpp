@@ -100,7 +100,7 @@ double polygon_area(const PolygonSoup& soup) {
 
 }  // namespace dynrad::test
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 
 #include <cmath>
 #include <unordered_map>

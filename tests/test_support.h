@@ -1,7 +1,7 @@
 // Helpers for tests: scratch directories, running the dynrad binary, sample paths.
 #pragma once
 
-#include "mesh/soup.h"
+#include "mesh/core/soup.h"
 
 #include <cstdint>
 #include <string>

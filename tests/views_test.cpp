@@ -1,8 +1,8 @@
 // Views (radiosity/analysis/views.h, rooms.h, render.h): storeys and rooms found from geometry,
 // plans cut through walls, declared cameras pointing where they say, a preview that is
 // never black inside a closed building, and the HTML report's contents.
-#include "mesh/error.h"
-#include "mesh/io_util.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
 #include "radiosity/analysis/render.h"
 #include "radiosity/analysis/rooms.h"
 #include "radiosity/analysis/views.h"

@@ -1,6 +1,6 @@
-// The tree's winding numbers (mesh/winding_number.h) against the closed answer (inside a
+// The tree's winding numbers (mesh/core/winding_number.h) against the closed answer (inside a
 // box: 1, outside: 0) and against the sum over every triangle.
-#include "mesh/winding_number.h"
+#include "mesh/core/winding_number.h"
 
 #include <gtest/gtest.h>
 

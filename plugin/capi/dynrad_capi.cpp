@@ -2,7 +2,7 @@
 // polygon soup -> cleanup -> scene mesh -> patches -> element hierarchy -> solver ->
 // per-vertex output and display encoding. Every entry point catches everything and
 // turns it into a status and a thread-local message: no exception crosses into C.
-#include "dynrad/dynrad.h"
+#include "plugin/capi/capi_internal.h"
 
 #include "plugin/capi/capi_report.h"
 #include "plugin/report/grid_picture.h"
@@ -31,102 +31,10 @@
 #include <string>
 #include <vector>
 
-// The opaque handles.
-struct dynrad_scene {
-  // A scene file (dynrad_scene_load), or arrays (dynrad_scene_create) as a soup.
-  std::string path;
-  dynrad::PolygonSoup soup;
-  // Read (or built) and checked when the scene was made, with the default cleanup; the
-  // first solve with that cleanup takes it (a solve refines its mesh in place), later
-  // solves read the file or build from `soup` again.
-  mutable std::mutex mutex;
-  mutable std::unique_ptr<dynrad::LoadedScene> unused;
-};
-
-struct dynrad_options {
-  dynrad_options() {
-    refine.method = dynrad::rad::Method::dynamic;  // as `dynrad solve`
-    solve.ambient_display = true;
-  }
-  dynrad::rad::SolveOptions solve;
-  dynrad::rad::RefineSettings refine;
-  // What the caller set of the settings `dynrad solve` chooses from the model
-  // (radiosity/solver/settings.h); the rest is chosen at the solve.
-  dynrad::rad::SettingsRequest request;
-  double exposure = 0;    // 0: automatic
-  bool simplify = true;   // merge flat regions before patching, as `dynrad solve`
-  bool imprint = true;    // imprint where surfaces meet, as `dynrad solve`
-};
-
-struct dynrad_result {
-  std::string report_json;  // the solve's report (radiosity/pipeline/report_json.h), with "grids"
-  std::vector<std::string> grid_names;
-  std::vector<std::vector<double>> grid_points;  // per grid, x y z E per point (E NaN inside solids)
-  std::vector<double> positions;
-  std::vector<std::uint32_t> triangles;
-  std::vector<std::uint32_t> triangle_materials;
-  std::vector<float> radiosity;
-  std::vector<std::uint8_t> display;
-  std::vector<float> illuminance;  // per vertex: lx (photometric), else W/m^2 weighted as luminance
-  dynrad_report report{};
-  // The solve itself, for dynrad_result_write_report (the solver's luminaires, the lit
-  // scene's views and checks). The solved scene refers to the prepared one: it goes first.
-  std::unique_ptr<dynrad::rad::PreparedScene> prepared;
-  std::unique_ptr<dynrad::rad::SolvedScene> solved;
-  std::string input;
-};
-
 namespace {
 
 using namespace dynrad;
-
-// What users read after a failure. thread_local: each thread sees its own last call.
-thread_local std::string t_last_error;
-
-// A failure with its status, thrown inside the library only.
-struct Failure {
-  dynrad_status status;
-  std::string message;
-};
-
-[[noreturn]] void fail(dynrad_status status, std::string message) { throw Failure{status, std::move(message)}; }
-
-void require(bool condition, const char* what) {
-  if (!condition) fail(DYNRAD_INVALID_ARGUMENT, what);
-}
-
-// Runs `body` with every exception mapped to a status and message.
-template <typename Body>
-dynrad_status guarded(Body&& body) noexcept {
-  t_last_error.clear();
-  try {
-    return body();
-  } catch (const Failure& f) {
-    t_last_error = f.message;
-    return f.status;
-  } catch (const rad::NoLightError& e) {
-    t_last_error = e.what();
-    return DYNRAD_NO_EMITTER;
-  } catch (const InputError& e) {
-    t_last_error = e.what();
-    return DYNRAD_INVALID_INPUT;
-  } catch (const OutputError& e) {
-    t_last_error = e.what();
-    return DYNRAD_OUTPUT_ERROR;
-  } catch (const std::bad_alloc&) {
-    t_last_error = "out of memory. Try a larger patch size or a smaller model.";
-    return DYNRAD_OUT_OF_MEMORY;
-  } catch (const std::exception& e) {
-    try {
-      t_last_error = std::string("internal error: ") + e.what() + ". Please report this with the input.";
-    } catch (...) {
-    }
-    return DYNRAD_INTERNAL_ERROR;
-  } catch (...) {
-    t_last_error = "internal error: unknown exception. Please report this with the input.";
-    return DYNRAD_INTERNAL_ERROR;
-  }
-}
+using namespace dynrad::capi;
 
 constexpr const char* kInputLabel = "scene arrays";
 
@@ -333,30 +241,14 @@ dynrad_result* solve(const dynrad_scene& scene, const dynrad_options& options, d
   return result.release();
 }
 
-template <typename T>
-dynrad_status copy_out(const dynrad_result* result, const std::vector<T> dynrad_result::*member, std::size_t per_item,
-                       std::size_t items, T* out, size_t capacity, const char* function) {
-  return guarded([&] {
-    require(result && out, "a result or buffer pointer is NULL.");
-    const std::vector<T>& data = result->*member;
-    if (capacity < items)
-      fail(DYNRAD_BUFFER_TOO_SMALL, std::string(function) + ": the buffer holds " + std::to_string(capacity) +
-                                        " items but " + std::to_string(items) +
-                                        " are needed; size it from dynrad_result_vertex_count or _triangle_count.");
-    if (items) std::memcpy(out, data.data(), items * per_item * sizeof(T));
-    return DYNRAD_OK;
-  });
-}
-
-dynrad_status set_option(dynrad_options* options, bool valid, const char* message) {
-  return guarded([&] {
-    require(options, "the options handle is NULL.");
-    require(valid, message);
-    return DYNRAD_OK;
-  });
-}
-
 }  // namespace
+
+namespace dynrad::capi {
+thread_local std::string t_last_error;
+}  // namespace dynrad::capi
+
+using namespace dynrad;
+using namespace dynrad::capi;
 
 extern "C" {
 
@@ -430,188 +322,6 @@ dynrad_status dynrad_scene_load(const char* path, dynrad_scene** out_scene) {
 
 void dynrad_scene_destroy(dynrad_scene* scene) { delete scene; }
 
-dynrad_status dynrad_options_create(dynrad_options** out_options) {
-  return guarded([&] {
-    require(out_options, "dynrad_options_create: out_options is NULL.");
-    *out_options = new dynrad_options();
-    return DYNRAD_OK;
-  });
-}
-
-void dynrad_options_destroy(dynrad_options* options) { delete options; }
-
-dynrad_status dynrad_options_set_method(dynrad_options* options, const char* method) {
-  return guarded([&] {
-    require(options && method, "dynrad_options_set_method: options or method is NULL.");
-    try {
-      options->refine.method = rad::parse_method(method);
-    } catch (const std::invalid_argument& e) {
-      fail(DYNRAD_INVALID_ARGUMENT, std::string("dynrad_options_set_method: ") + e.what() + ".");
-    }
-    return DYNRAD_OK;
-  });
-}
-
-dynrad_status dynrad_options_set_max_level(dynrad_options* options, int max_level) {
-  const dynrad_status s =
-      set_option(options, max_level >= 0 && max_level <= 12, "dynrad_options_set_max_level: must be in 0..12.");
-  if (s == DYNRAD_OK) options->request.max_level = max_level;
-  return s;
-}
-
-dynrad_status dynrad_options_set_patch_size(dynrad_options* options, double patch_size) {
-  const dynrad_status s = set_option(options, std::isfinite(patch_size) && patch_size >= 0,
-                                     "dynrad_options_set_patch_size: must be a finite number >= 0 (0: default).");
-  if (s == DYNRAD_OK) options->request.patch_size = patch_size;
-  return s;
-}
-
-dynrad_status dynrad_options_set_converge(dynrad_options* options, double converge) {
-  const dynrad_status s =
-      set_option(options, converge >= 0 && converge < 1, "dynrad_options_set_converge: must be in [0, 1).");
-  if (s == DYNRAD_OK) options->request.converge = converge;
-  return s;
-}
-
-dynrad_status dynrad_options_set_iterations(dynrad_options* options, uint64_t iterations) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->solve.max_iterations = static_cast<std::size_t>(iterations);
-  return s;
-}
-
-dynrad_status dynrad_options_set_time_limit(dynrad_options* options, double seconds) {
-  const dynrad_status s = set_option(options, std::isfinite(seconds) && seconds >= 0,
-                                     "dynrad_options_set_time_limit: must be a finite number >= 0 (0: no limit).");
-  if (s == DYNRAD_OK) options->solve.time_limit = seconds;
-  return s;
-}
-
-dynrad_status dynrad_options_set_threads(dynrad_options* options, int threads) {
-  const dynrad_status s =
-      set_option(options, threads >= 0 && threads <= 1024, "dynrad_options_set_threads: must be in 0..1024.");
-  if (s == DYNRAD_OK) options->solve.threads = threads;
-  return s;
-}
-
-dynrad_status dynrad_options_set_seed(dynrad_options* options, uint64_t seed) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->solve.seed = seed;
-  return s;
-}
-
-dynrad_status dynrad_options_set_threshold(dynrad_options* options, double threshold) {
-  const dynrad_status s = set_option(options, std::isfinite(threshold) && threshold > 0,
-                                     "dynrad_options_set_threshold: must be a finite number > 0.");
-  if (s == DYNRAD_OK) {
-    options->refine.adaptive_threshold = threshold;
-    options->refine.dynamic.cumulated_gradient = options->refine.dynamic.current_gradient =
-        options->refine.dynamic.current_ratio = threshold;
-  }
-  return s;
-}
-
-dynrad_status dynrad_options_set_oracle(dynrad_options* options, const char* oracle) {
-  const bool known = oracle && (std::string(oracle) == "pushdown" || std::string(oracle) == "paper");
-  const dynrad_status s =
-      set_option(options, known, "dynrad_options_set_oracle: unknown oracle; available: pushdown, paper.");
-  if (s == DYNRAD_OK)
-    options->refine.dynamic.variant = std::string(oracle) == "paper" ? rad::OracleThresholds::Variant::paper
-                                                                     : rad::OracleThresholds::Variant::pushdown;
-  return s;
-}
-
-dynrad_status dynrad_options_set_oracle_threshold(dynrad_options* options, const char* name, double value) {
-  dynrad_status s = set_option(options, name && std::isfinite(value) && value >= 0,
-                               "dynrad_options_set_oracle_threshold: name is NULL or value is not a finite number >= 0.");
-  if (s != DYNRAD_OK) return s;
-  rad::OracleThresholds& t = options->refine.dynamic;
-  const std::string n = name;
-  if (n == "pushdown_ambient") {
-    t.pushdown_ambient = value != 0;
-    return DYNRAD_OK;
-  }
-  double* target = n == "cumulated_gradient" ? (t.variant == rad::OracleThresholds::Variant::paper
-                                                    ? &t.cumulated_gradient
-                                                    : &t.pushdown_cumulated_gradient)
-                   : n == "current_gradient" ? &t.current_gradient
-                   : n == "current_ratio"    ? &t.current_ratio
-                   : n == "pushdown_error"   ? &t.pushdown
-                   : n == "pushdown_floor"   ? &t.pushdown_floor
-                                             : nullptr;
-  s = set_option(options, target != nullptr,
-                 "dynrad_options_set_oracle_threshold: unknown name; available: cumulated_gradient, current_gradient, "
-                 "current_ratio, pushdown_error, pushdown_floor, pushdown_ambient.");
-  if (s == DYNRAD_OK) {
-    *target = value;
-    if (n == "pushdown_error") options->request.pushdown = value;
-    if (n == "pushdown_floor") options->request.pushdown_floor = value;
-  }
-  return s;
-}
-
-dynrad_status dynrad_options_set_quality(dynrad_options* options, const char* quality) {
-  return guarded([&] {
-    require(options && quality, "dynrad_options_set_quality: options or quality is NULL.");
-    try {
-      options->request.quality = rad::parse_quality(quality);
-    } catch (const std::invalid_argument& e) {
-      fail(DYNRAD_INVALID_ARGUMENT, std::string("dynrad_options_set_quality: ") + e.what());
-    }
-    return DYNRAD_OK;
-  });
-}
-
-dynrad_status dynrad_options_set_max_elements(dynrad_options* options, uint64_t max_elements) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->refine.max_elements = static_cast<std::size_t>(max_elements);
-  return s;
-}
-
-dynrad_status dynrad_options_set_ambient(dynrad_options* options, int on) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->solve.ambient_display = on != 0;
-  return s;
-}
-
-dynrad_status dynrad_options_set_overshoot(dynrad_options* options, double overshoot) {
-  const dynrad_status s = set_option(options, std::isfinite(overshoot) && overshoot > 0 && overshoot < 2,
-                                     "dynrad_options_set_overshoot: must lie strictly between 0 and 2 (1: none).");
-  if (s == DYNRAD_OK) options->request.overshoot = overshoot;
-  return s;
-}
-
-dynrad_status dynrad_options_set_negligible_share(dynrad_options* options, double share) {
-  const dynrad_status s = set_option(options, std::isfinite(share) && share >= 0 && share <= 0.1,
-                                     "dynrad_options_set_negligible_share: must lie in [0, 0.1] (0: never skip).");
-  if (s == DYNRAD_OK) options->solve.negligible_share = share;
-  return s;
-}
-
-dynrad_status dynrad_options_set_simplify(dynrad_options* options, int on) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->simplify = on != 0;
-  return s;
-}
-
-dynrad_status dynrad_options_set_imprint(dynrad_options* options, int on) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->imprint = on != 0;
-  return s;
-}
-
-dynrad_status dynrad_options_set_shaped_senders(dynrad_options* options, int on) {
-  const dynrad_status s = set_option(options, true, "");
-  if (s == DYNRAD_OK) options->solve.shaped_senders = on != 0;
-  return s;
-}
-
-dynrad_status dynrad_options_set_exposure(dynrad_options* options, double exposure) {
-  const dynrad_status s = set_option(options, std::isfinite(exposure) && exposure >= 0,
-                                     "dynrad_options_set_exposure: must be a finite number >= 0 (0: automatic).");
-  if (s == DYNRAD_OK) options->exposure = exposure;
-  return s;
-}
-
 dynrad_status dynrad_solve(const dynrad_scene* scene, const dynrad_options* options, dynrad_progress_fn progress,
                            void* user, const volatile int* cancel, dynrad_result** out_result) {
   if (out_result) *out_result = nullptr;
@@ -621,100 +331,6 @@ dynrad_status dynrad_solve(const dynrad_scene* scene, const dynrad_options* opti
     dynrad_result* result = solve(*scene, options ? *options : defaults, progress, user, cancel);
     *out_result = result;
     return result->report.stopped_by == DYNRAD_STOP_CANCELLED ? DYNRAD_STOPPED : DYNRAD_OK;
-  });
-}
-
-void dynrad_result_destroy(dynrad_result* result) { delete result; }
-
-size_t dynrad_result_vertex_count(const dynrad_result* result) { return result ? result->positions.size() / 3 : 0; }
-
-size_t dynrad_result_triangle_count(const dynrad_result* result) { return result ? result->triangles.size() / 3 : 0; }
-
-dynrad_status dynrad_result_positions(const dynrad_result* result, double* xyz, size_t capacity) {
-  return copy_out(result, &dynrad_result::positions, 3, dynrad_result_vertex_count(result), xyz, capacity,
-                  "dynrad_result_positions");
-}
-
-dynrad_status dynrad_result_triangles(const dynrad_result* result, uint32_t* indices, size_t capacity) {
-  return copy_out(result, &dynrad_result::triangles, 3, dynrad_result_triangle_count(result), indices, capacity,
-                  "dynrad_result_triangles");
-}
-
-dynrad_status dynrad_result_triangle_materials(const dynrad_result* result, uint32_t* materials, size_t capacity) {
-  return copy_out(result, &dynrad_result::triangle_materials, 1, dynrad_result_triangle_count(result), materials,
-                  capacity, "dynrad_result_triangle_materials");
-}
-
-dynrad_status dynrad_result_radiosity(const dynrad_result* result, float* rgb, size_t capacity) {
-  return copy_out(result, &dynrad_result::radiosity, 3, dynrad_result_vertex_count(result), rgb, capacity,
-                  "dynrad_result_radiosity");
-}
-
-dynrad_status dynrad_result_display(const dynrad_result* result, uint8_t* rgb, size_t capacity) {
-  return copy_out(result, &dynrad_result::display, 3, dynrad_result_vertex_count(result), rgb, capacity,
-                  "dynrad_result_display");
-}
-
-dynrad_status dynrad_result_report(const dynrad_result* result, dynrad_report* report) {
-  return guarded([&] {
-    require(result && report, "dynrad_result_report: result or report is NULL.");
-    *report = result->report;
-    return DYNRAD_OK;
-  });
-}
-
-const char* dynrad_result_report_json(const dynrad_result* result) { return result ? result->report_json.c_str() : ""; }
-
-size_t dynrad_result_grid_count(const dynrad_result* result) { return result ? result->grid_names.size() : 0; }
-
-const char* dynrad_result_grid_name(const dynrad_result* result, size_t grid) {
-  return result && grid < result->grid_names.size() ? result->grid_names[grid].c_str() : nullptr;
-}
-
-size_t dynrad_result_grid_point_count(const dynrad_result* result, size_t grid) {
-  return result && grid < result->grid_points.size() ? result->grid_points[grid].size() / 4 : 0;
-}
-
-dynrad_status dynrad_result_grid_points(const dynrad_result* result, size_t grid, double* xyze, size_t capacity) {
-  return guarded([&] {
-    require(result && xyze, "dynrad_result_grid_points: result or xyze is NULL.");
-    require(grid < result->grid_points.size(), "dynrad_result_grid_points: no grid of that index.");
-    const std::vector<double>& points = result->grid_points[grid];
-    if (capacity < points.size() / 4)
-      fail(DYNRAD_BUFFER_TOO_SMALL, "dynrad_result_grid_points: the buffer holds " + std::to_string(capacity) +
-                                        " points but " + std::to_string(points.size() / 4) +
-                                        " are needed; size it from dynrad_result_grid_point_count.");
-    if (!points.empty()) std::memcpy(xyze, points.data(), points.size() * sizeof(double));
-    return DYNRAD_OK;
-  });
-}
-
-dynrad_status dynrad_result_illuminance(const dynrad_result* result, float* lux, size_t capacity) {
-  return copy_out(result, &dynrad_result::illuminance, 1, dynrad_result_vertex_count(result), lux, capacity,
-                  "dynrad_result_illuminance");
-}
-
-dynrad_status dynrad_result_write_report(const dynrad_result* result, const char* path) {
-  return guarded([&] {
-    require(result && path && *path, "dynrad_result_write_report: result is NULL, or path is NULL or empty.");
-    capi::ReportInputs inputs;
-    inputs.prepared = result->prepared.get();
-    inputs.solved = result->solved.get();
-    inputs.exposure = result->report.exposure;
-    inputs.input = result->input;
-    inputs.version = DYNRAD_VERSION;
-    capi::write_report(path, inputs);
-    return DYNRAD_OK;
-  });
-}
-
-dynrad_status dynrad_false_colour(double t, uint8_t rgb[3]) {
-  return guarded([&] {
-    require(rgb, "dynrad_false_colour: rgb is NULL.");
-    require(std::isfinite(t), "dynrad_false_colour: t is not a finite number.");
-    const std::array<std::uint8_t, 3> c = report::false_colour(std::clamp(t, 0.0, 1.0));
-    std::copy(c.begin(), c.end(), rgb);
-    return DYNRAD_OK;
   });
 }
 

@@ -1,9 +1,9 @@
 // `dynrad annual`'s lit meshes and vertex coefficients (see annual_meshes.h).
 #include "plugin/cli/annual_meshes.h"
 
-#include "mesh/error.h"
-#include "mesh/export.h"
-#include "mesh/scene_mesh.h"
+#include "mesh/core/error.h"
+#include "mesh/io/export.h"
+#include "mesh/core/scene_mesh.h"
 #include "plugin/cli/npy.h"
 #include "radiosity/analysis/tonemap.h"
 

@@ -2,9 +2,9 @@
 // reflectance (emitters by their emission colour), with vertices split at creases and
 // material borders exactly as lit output will be. Useful to check a model's materials
 // and facing before a solve.
-#include "mesh/atomic_file.h"
+#include "mesh/io/atomic_file.h"
 #include "mesh/load.h"
-#include "mesh/vertex_split.h"
+#include "mesh/core/vertex_split.h"
 #include "plugin/cli/commands.h"
 #include "radiosity/analysis/tonemap.h"
 

@@ -4,9 +4,9 @@
 // A and B may have different refinements (adaptive and dynamic subdivision refine
 // differently): at each vertex of A, B is interpolated inside its face that holds the
 // vertex on the same surface (same facing, same side of any border).
-#include "mesh/error.h"
-#include "mesh/atomic_file.h"
-#include "mesh/export.h"
+#include "mesh/core/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/io/export.h"
 #include "plugin/cli/commands.h"
 #include "radiosity/analysis/tonemap.h"
 

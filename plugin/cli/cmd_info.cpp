@@ -1,7 +1,7 @@
 // `dynrad info FILE`: what dynrad sees in a model after cleanup; for a photometry file
 // (.ies, .ldt), its summary and the tabular UGR (radiosity/design/glare.h).
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "plugin/cli/commands.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/design/glare.h"

@@ -6,8 +6,8 @@
 // the unshot curve alone.
 //
 // The SVG is written by hand (a few elements) and atomically.
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 #include "plugin/cli/commands.h"
 
 #include <fmt/format.h>

@@ -21,8 +21,8 @@
 // axis; the grid runs over the other two, in x, y, z order). The rays go to Embree
 // (rad::Visibility): 6,700 points on a lit building of 450,000 triangles take half a
 // second.
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/lit_mesh.h"
@@ -373,7 +373,7 @@ int run_probe(const ProbeOptions& options) {
 Command add_probe_command(CLI::App& app) {
   auto options = std::make_shared<ProbeOptions>();
   CLI::App* command =
-      app.add_subcommand("probe", "Radiosity and irradiance of a lit mesh at calculation points (see docs/report.md)");
+      app.add_subcommand("probe", "Radiosity and irradiance of a lit mesh at calculation points (see docs/commands/probe.md)");
   command->add_option("lit", options->lit, "Lit PLY written by dynrad solve")->required();
   command->add_option("--points", options->points, "File of points, one 'x y z nx ny nz' per line, # comments");
   command->add_option("--grid", options->grid,

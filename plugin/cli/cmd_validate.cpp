@@ -4,9 +4,9 @@
 // that share no code with the solver (plugin/validate/reference.h). It prints, per
 // case, the worst and mean error against this project's goal and CIE's tolerance, and
 // exits with kExitValidation when any case misses its goal.
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
-#include "mesh/io_util.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
 #include "plugin/cli/commands.h"
 #include "plugin/cli/lit_mesh.h"
 #include "plugin/cli/validate_report.h"

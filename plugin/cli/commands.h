@@ -2,8 +2,8 @@
 // returns the function that runs it.
 #pragma once
 
-#include "mesh/cleanup.h"
-#include "mesh/import.h"
+#include "mesh/repair/cleanup.h"
+#include "mesh/io/import.h"
 #include "radiosity/pipeline/scene_sections.h"
 
 #include <CLI/CLI.hpp>
@@ -36,9 +36,9 @@ Command add_annual_command(CLI::App& app);
 struct LoadOptions {
   std::string input;
   double merge_tolerance = 1e-6;
-  bool imprint = true;   // imprint where surfaces meet, remove hidden parts (mesh/imprint.h)
-  bool simplify = true;  // merge flat regions before patching (mesh/simplify.h)
-  bool strict = false;   // refuse what is otherwise read with a warning (mesh/import.h)
+  bool imprint = true;   // imprint where surfaces meet, remove hidden parts (mesh/repair/imprint.h)
+  bool simplify = true;  // merge flat regions before patching (mesh/repair/simplify.h)
+  bool strict = false;   // refuse what is otherwise read with a warning (mesh/io/import.h)
   std::string up = "auto";  // the model's up axis: auto (the format's), y or z
   double scale = 1;         // model units to metres
 

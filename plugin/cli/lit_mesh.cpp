@@ -1,7 +1,7 @@
 // Reading a lit PLY back (see lit_mesh.h).
 #include "plugin/cli/lit_mesh.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

@@ -2,7 +2,7 @@
 // what `probe` and `grid` read.
 #pragma once
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 #include "radiosity/transfer/visibility.h"
 
 #include <array>

@@ -1,6 +1,6 @@
 // dynrad: radiosity lighting for meshes. This file only dispatches subcommands and
 // turns errors into messages and exit codes; the work is in the libraries.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "plugin/cli/commands.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>

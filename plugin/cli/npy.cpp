@@ -1,7 +1,7 @@
 // .npy writing (see npy.h).
 #include "plugin/cli/npy.h"
 
-#include "mesh/atomic_file.h"
+#include "mesh/io/atomic_file.h"
 
 #include <fmt/format.h>
 

@@ -3,8 +3,8 @@
 // keys that are absent, null or of another type leave their section or cell out ("–").
 #include "plugin/cli/pdf_report.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "mesh/io/atomic_file.h"
+#include "mesh/core/error.h"
 #include "plugin/cli/pdf_document.h"
 
 #include <fmt/format.h>

@@ -1,8 +1,8 @@
 // `import dynrad`: the pipeline (radiosity/pipeline/pipeline.h) for Python, with NumPy
 // arrays in and out. The package (plugin/python/dynrad/__init__.py) re-exports it;
 // docs/hosts.md shows its use.
-#include "mesh/error.h"
-#include "mesh/import.h"
+#include "mesh/core/error.h"
+#include "mesh/io/import.h"
 #include "mesh/load.h"
 #include "radiosity/pipeline/pipeline.h"
 #include "radiosity/pipeline/report_json.h"

@@ -5,7 +5,7 @@
 // them as a user would and compares.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <functional>
 #include <string>

@@ -4,7 +4,7 @@
 // check nothing.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <array>
 #include <vector>

@@ -1,5 +1,5 @@
 // The "cameras" array of a JSON scene file (see views.h).
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/scene_json.h"
 #include "radiosity/analysis/views.h"
 

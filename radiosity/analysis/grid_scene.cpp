@@ -26,7 +26,7 @@
 //     "UGR"            limit for the observers (the scene's "observers") in the polygon
 //
 // Unknown keys are errors.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/analysis/grid_scene.h"
 #include "radiosity/sources/scene_json.h"
 

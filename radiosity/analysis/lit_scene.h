@@ -3,8 +3,8 @@
 // from a solve in this process or from a lit PLY read back with its model.
 #pragma once
 
-#include "mesh/scene_mesh.h"
-#include "mesh/vertex_split.h"
+#include "mesh/core/scene_mesh.h"
+#include "mesh/core/vertex_split.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/transfer/visibility.h"
 

@@ -2,8 +2,8 @@
 // surface facing `normal`) and linear interpolation of its corner values.
 #pragma once
 
-#include "mesh/scene_mesh.h"
-#include "mesh/vertex_split.h"
+#include "mesh/core/scene_mesh.h"
+#include "mesh/core/vertex_split.h"
 
 #include <optional>
 #include <vector>

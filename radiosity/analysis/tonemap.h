@@ -3,8 +3,8 @@
 // radiosity straight into bytes makes everything look too dark.
 #pragma once
 
-#include "mesh/export.h"
-#include "mesh/types.h"
+#include "mesh/io/export.h"
+#include "mesh/core/types.h"
 
 #include <array>
 #include <cstdint>

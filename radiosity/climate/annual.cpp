@@ -1,7 +1,7 @@
 // A year of daylight from daylight coefficients (see annual.h).
 #include "radiosity/climate/annual.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/perez.h"
 #include "radiosity/sources/sky.h"
 

@@ -1,7 +1,7 @@
 // Daylight coefficients with interreflection from one solve (see coefficient_solve.h).
 #include "radiosity/climate/coefficient_solve.h"
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/analysis/lit_scene.h"
 #include "radiosity/transfer/random.h"

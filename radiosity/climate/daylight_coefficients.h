@@ -14,7 +14,7 @@
 // (sun_illuminance), as sharp as the sun of a single solve.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 #include "radiosity/climate/sky_patches.h"
 
 #include <cstdint>

@@ -1,9 +1,9 @@
 // EnergyPlus weather (EPW) reader: see epw.h for what it accepts and refuses.
 #include "radiosity/climate/epw.h"
 
-#include "mesh/error.h"
-#include "mesh/io_util.h"
-#include "mesh/text_lines.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
+#include "mesh/io/text_lines.h"
 
 #include <algorithm>
 #include <array>

@@ -12,7 +12,7 @@
 // perpendicular to `up`; east = north x up.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <cstddef>
 #include <array>

@@ -1,7 +1,7 @@
 // Daylight coefficients at vertices (see vertex_coefficients.h).
 #include "radiosity/climate/vertex_coefficients.h"
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 #include "radiosity/climate/daylight_coefficients.h"
 
 #include <tbb/parallel_for.h>

@@ -8,7 +8,7 @@
 //
 // "floor" is the height of the floor along the up axis (default 0); names default to
 // "route1", "area1", ... and must be unique. Unknown keys are errors.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/sources/scene_json.h"
 

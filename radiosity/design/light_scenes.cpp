@@ -1,7 +1,7 @@
 // Light scenes by superposition (see light_scenes.h).
 #include "radiosity/design/light_scenes.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/scene_json.h"
 
 #include <nlohmann/json.hpp>

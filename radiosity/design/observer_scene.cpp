@@ -11,7 +11,7 @@
 //                most 40; optional
 //
 // Unknown keys are errors.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/design/glare.h"
 #include "radiosity/sources/scene_json.h"
 

@@ -1,7 +1,7 @@
 // The pipeline from a scene to a solved result (see pipeline.h).
 #include "radiosity/pipeline/pipeline.h"
 
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/analysis/grid_scene.h"
 #include "radiosity/analysis/views.h"
 #include "radiosity/design/emergency.h"

@@ -13,12 +13,12 @@
 // writing files or returning arrays) stays with the host.
 #pragma once
 
-#include "mesh/cleanup.h"
-#include "mesh/error.h"
-#include "mesh/import.h"
+#include "mesh/repair/cleanup.h"
+#include "mesh/core/error.h"
+#include "mesh/io/import.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
-#include "mesh/simplify.h"
+#include "mesh/core/refinement.h"
+#include "mesh/repair/simplify.h"
 #include "radiosity/analysis/grid.h"
 #include "radiosity/analysis/lit_scene.h"
 #include "radiosity/design/light_scenes.h"

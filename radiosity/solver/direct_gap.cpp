@@ -38,6 +38,15 @@
 
 namespace dynrad::rad {
 
+namespace {
+
+// Direct light at a point (Solver::direct_light).
+constexpr std::size_t kDirectPatches = 16;  // the brightest emitting patches looked at
+constexpr double kDirectShare = 0.9;        // of the patches' emitted power, or none
+constexpr int kDirectRays = 16;             // per emitting patch and point, after 4 that disagree
+
+}  // namespace
+
 void Solver::choose_direct_sources() {
   direct_sources_.clear();
   for (std::size_t k = 0; k < luminaires_.size(); ++k)

@@ -8,6 +8,12 @@
 #include <cmath>
 
 namespace dynrad::rad {
+
+namespace {
+
+constexpr double kDirectGapWeight = 2.0 / 3;    // its weight in the estimate's mesh part
+
+}  // namespace
 namespace {
 double sum_of(const Rgb& c) { return c.r + c.g + c.b; }
 }  // namespace

@@ -20,7 +20,7 @@
 // A value of 0.3 for a gradient means the corners differ by 30% of the brightest.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <array>
 

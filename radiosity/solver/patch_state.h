@@ -3,7 +3,7 @@
 // groups and clusters.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 #include "radiosity/transfer/form_factor.h"
 
 #include <array>

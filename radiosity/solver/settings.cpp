@@ -1,7 +1,7 @@
 #include "radiosity/solver/settings.h"
 
-#include "mesh/mean_free_path.h"
-#include "mesh/refinement.h"
+#include "mesh/core/mean_free_path.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/solver/solver.h"
 
 #include <fmt/format.h>

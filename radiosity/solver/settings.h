@@ -1,11 +1,11 @@
 // Settings chosen from the model: what `dynrad solve MODEL -o OUT.ply` uses when no
 // expert option is given. One knob, the quality, picks an error target and the
 // discretisation that reaches it; the model gives the scale (its mean free path, see
-// mesh/mean_free_path.h) and the machine the memory. Every expert option overrides
+// mesh/core/mean_free_path.h) and the machine the memory. Every expert option overrides
 // what is chosen here, and the report lists what was used.
 #pragma once
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 #include "radiosity/solver/oracle.h"
 #include "radiosity/solver/solve_types.h"
 

@@ -1,7 +1,7 @@
 // Options and results shared by the solvers.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <cstdint>
 #include <functional>
@@ -39,7 +39,7 @@ struct SolveOptions {
   int escape_rays = 1024;          // rays per sender to measure the power it loses to the outside
   std::uint64_t seed = 1;          // all sampling is seeded: same input, same answer
   int threads = 0;                 // 0: all cores
-  double crease_angle = 30;        // degrees; see mesh/vertex_split.h
+  double crease_angle = 30;        // degrees; see mesh/core/vertex_split.h
   // Output only: add Cohen et al.'s (1988) ambient estimate of the light not yet shot,
   // reflectance x ambient, to every vertex. It does not touch the solve or
   // its energy balance; it makes an early stop (a time limit, Ctrl-C) look like the
@@ -94,7 +94,7 @@ struct SolveOptions {
   // house took 14% more shots (25% with detail counted too); with it, as many (4,338).
   // False: power alone.
   bool whole_patch_senders = true;
-  // Face clusters (mesh/face_clusters.h): patches whose facet (the patches that touch
+  // Face clusters (mesh/core/face_clusters.h): patches whose facet (the patches that touch
   // in one plane) has less area than cluster_area and that emit nothing are grouped, within spheres of radius cluster_radius, into clusters
   // that send and receive light as one: a cluster far from a sender (kClusterFar of its
   // radii) receives at one point per part, and it shoots the light its patches
@@ -103,7 +103,7 @@ struct SolveOptions {
   // adaptive method never uses them (it gathers every earlier shot into new elements).
   double cluster_area = 0;
   double cluster_radius = 0;
-  // Sender groups (mesh/plane_groups.h): the patches that are in no face cluster are
+  // Sender groups (mesh/core/plane_groups.h): the patches that are in no face cluster are
   // grouped, with the neighbours that lie in their plane and have their material,
   // within spheres of this radius (at most 16 patches a group); a group sends its
   // patches' light in one shot (see Solver). 0: every patch sends on its own. `dynrad

@@ -19,8 +19,13 @@ namespace dynrad::rad {
 
 namespace {
 
+constexpr double kDetailFacet = 8.0;  // 8 x patch_area: the patch size squared
+
+}  // namespace
+
+namespace {
+
 double sum(const Rgb& c) { return c.r + c.g + c.b; }
-double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
 
 }  // namespace
 

@@ -13,17 +13,19 @@
 // patch.
 #pragma once
 
-#include "mesh/face_clusters.h"
-#include "mesh/plane_groups.h"
-#include "mesh/refinement.h"
-#include "mesh/sphere_index.h"
-#include "mesh/vertex_split.h"
+#include "mesh/core/face_clusters.h"
+#include "mesh/core/plane_groups.h"
+#include "mesh/core/refinement.h"
+#include "mesh/core/sphere_index.h"
+#include "mesh/core/vertex_split.h"
 #include "radiosity/transfer/form_factor.h"
 #include "radiosity/transfer/grow_array.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/solver/oracle.h"
 #include "radiosity/solver/patch_state.h"
 #include "radiosity/solver/refine_settings.h"
+#include "radiosity/solver/sender_shape.h"
+#include "radiosity/solver/shot_walk.h"
 #include "radiosity/transfer/process_memory.h"
 #include "radiosity/transfer/receiver_tree.h"
 #include "radiosity/solver/solve_types.h"
@@ -55,7 +57,7 @@ class Solver {
   SolveReport run();
   bool shoot_once();  // one shot from the brightest patch; false when nothing is left
 
-  // Per output vertex (see mesh/vertex_split.h) of the current mesh: the mean of the
+  // Per output vertex (see mesh/core/vertex_split.h) of the current mesh: the mean of the
   // leaf corner values that meet there, weighted by the leaves' areas. (Unweighted, a
   // sliver that a shot culled as a negligible receiver, and so holds less at a corner
   // it shares with large lit elements, pulled the vertex down as much as they did: the
@@ -237,7 +239,6 @@ class Solver {
   // A rough lost fraction (kRoughEscapeRays) for a patch or cluster sender that holds
   // unshot light but has not shot yet: survey_patches() needs only an idea of it.
   void rough_lost_fraction(std::uint32_t id);
-  static constexpr int kRoughEscapeRays = 64;
   // Form factors at the corners of `elements` for the current sender, computed in
   // parallel for every receiver not yet known this shot.
   void compute_form_factors(const std::vector<ElementId>& elements);
@@ -250,7 +251,6 @@ class Solver {
   // kSettleShare of what the corner holds. Two rays that happen to agree inside a
   // penumbra otherwise make a lone dark or bright vertex (tests/pictures_test.cpp).
   void settle_visibility(const std::vector<ElementId>& elements);
-  static constexpr double kSettleShare = 0.05;
   // For shots from patches, emitting or reflecting (not luminaires: their rays give no
   // verdict). Two first rays that agree are kept as the whole answer, and that pulls
   // the fraction seen towards 0 or 1: a sender seen by a fifth of it counts as seen
@@ -261,14 +261,11 @@ class Solver {
   // kSettleShareReflected of the corner's value: on the IFC house that costs 7% more
   // rays (at kSettleShare's 0.05, 12%, for the room no better).
   bool settles_visibility() const { return sender_ < patches_.size(); }
-  static constexpr double kSettleShareReflected = 0.2;
-  static constexpr double kNearFieldShare = 0.05;
   // The share of patch p that point x (normal n) sees, by kNearRays rays: to its
   // centroid and halfway to each corner. For the near-field corrections, where a
   // closed form stands for the light of a patch a few decimetres off, which a
   // partition or a wall's thickness may hide (near_field_start, near_unshot).
   double near_seen_share(const Vec3d& x, const Vec3d& n, const Patch& p) const;
-  static constexpr int kNearRays = 4;
   double form_factor(ElementId e, int corner) const;
   // Receivers: one per (vertex, facing) that an element's corner is, numbered as the
   // elements appear (in id order: the same for any thread count), for elements from
@@ -291,43 +288,7 @@ class Solver {
   // Lambert's closed form from point x (normal n) to the current sender, with the
   // sender's shape (SolveOptions::shaped_senders) where it has one.
   double sender_closed_form(const Vec3d& x, const Vec3d& n) const;
-  // The current sender's shape: its unshot radiosity, the mean m plus the deviation of
-  // the unshot values at the 15 nodes of a quarter grid on it (values there minus
-  // Patch::shot_at_nodes; a node's value comes from the elements below it, so a refined
-  // sender is shaped by more than its corners) from their mean, linear on each of the
-  // grid's 16 parts (triangle_parts()). Each part gets a weight w = its mean unshot
-  // radiosity / m (the parts have equal areas and the mean of w is 1: the power shot is
-  // the same). F to the shaped sender is the sum of w times F to each part: the parts'
-  // closed forms within kShapeNear sender radii (point_to_parted_triangle); beyond, F
-  // to the whole plus the parts' corrections (w - 1) times their point-to-area forms,
-  // to first order in the parts' offsets: the gradient of the point-to-area form at
-  // the sender's centroid times the weights' dipole, sum (w - 1) (part centroid -
-  // centroid) / 16 (relative error about (sender radius / distance)^2). A quarter grid,
-  // not the midpoints' four parts: on the 1990 room at --quality high the largest error
-  // falls from 2.7% to 0.7% (the walls' radiosity bends within a patch toward the
-  // ceiling, which four linear parts miss).
-  //   Where the unshot values bend too little within the midpoint parts to need the
-  // grid (at most kShapeBend m off the line between the nodes beside them), the shape
-  // is linear on the four midpoint parts and receivers near the sender see those four
-  // (point_to_quartered_triangle: 9 Lambert terms, not up to 30).
-  struct SenderShape {
-    bool on = false;
-    bool fine = false;  // the 16 parts, not the 4 midpoint ones
-    std::array<double, kTriangleParts> weight{};
-    std::array<double, 4> coarse{};  // the midpoint parts' (point_to_quartered_triangle)
-    Vec3d centroid, dipole;
-    double max_weight = 1;
-  } shape_;
-  // Within 1.5 radii the parts are summed. On the 1990 room's 2 m patches with uniform
-  // receivers (measured with the corners-only shape), 1 radius leaves 0.29% from the
-  // reference, 1.5, 2 and 3 all 0.24%.
-  static constexpr double kShapeNear = 1.5;
-  // The bend that takes the 16 parts: 2% of the shot's mean. On the 1990 room at
-  // --quality high it gives what the 16 parts always give (largest error 0.72%); the
-  // generated storey's solve takes 2-5% longer than with the midpoint parts alone,
-  // against 6-9% with the 16 parts for every shot (more Lambert terms near senders,
-  // and the larger weights cull fewer receivers).
-  static constexpr double kShapeBend = 0.02;
+  SenderShape shape_;  // the current sender's (sender_shape.h)
   void shape_sender();
   // The shape of patch `patch`'s unshot radiosity for a shot of mean luminance m (see
   // SenderShape); moves the patch's shot_at_nodes on to this shot.
@@ -335,14 +296,6 @@ class Solver {
   // The shape of all that patch `patch` has shot so far (Patch::shot_at_nodes against
   // its mean, Patch::shot), for gathering to new elements (gather_new_elements).
   SenderShape shipped_shape(std::uint32_t patch) const;
-  // The shape of values b at the 15 nodes (form_factor.h's numbering) about mean m,
-  // with `fine` its SenderShape::fine; off where the parts' means are within 0.1% of m.
-  static SenderShape shape_from_nodes(const std::array<Vec3d, 3>& corners, const double* b, double m, bool fine);
-  // F from x (normal n) to a triangle sender with `shape` (the parted closed form
-  // near it, the dipole's first-order correction beyond).
-  static double shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
-                                   const Vec3d& centre, double radius, double area, const Vec3d& normal,
-                                   const SenderShape& shape);
   // Luminance of the cumulated radiosity at point p of patch `root`'s surface: the
   // leaf's corner values interpolated, plus what its ancestors still hold to push down.
   double luminance_at(ElementId root, const Vec3d& p) const;
@@ -353,12 +306,6 @@ class Solver {
   // `mid` gets midpoint_form_factors() on the way.
   double estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in,
                                  std::array<double, 3>& mid) const;
-  // 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
-  static constexpr double kCentroidWeight = 0.75;
-  // estimate_pushdown_error(): distance, in sender radii, from which the midpoint
-  // estimate uses the point-to-area form (its error relative to the estimate is about
-  // (1 / kFarField)^2).
-  static constexpr double kFarField = 5.0;
   // Corner values for elements created since the last call, from their parents.
   void initialise_new_elements();
   // Elements from `first` on whose nearest older ancestor is one of this shot's
@@ -407,49 +354,7 @@ class Solver {
   void account_transfers(const std::vector<ElementId>& terminals, const std::vector<double>& reach,
                          std::uint32_t sender, const Rgb& shot_radiosity);
 
-  // A chunk of one level of a shot's walk: what its elements add to the shot's lists
-  // and counters, in level order (see shoot_once()). Kept between shots for their
-  // storage.
-  struct WalkChunk {
-    std::vector<ElementId> passed;  // the shot goes on below
-    std::vector<ElementId> subdivide, ready, terminals;
-    std::vector<double> reach;  // per terminal
-    std::size_t transfers = 0, patch_transfers = 0;
-    void count(const Element& el) {  // a transfer, as the paper counts them
-      ++transfers;
-      if (el.generation > 0) ++patch_transfers;
-    }
-    void clear() {
-      passed.clear();
-      subdivide.clear();
-      ready.clear();
-      terminals.clear();
-      reach.clear();
-      transfers = patch_transfers = 0;
-    }
-  };
-  std::vector<WalkChunk> walk_chunks_;
-  // One shot's steps (shoot.cpp, Figure 5).
-  // What decides refinement in this shot (a luminaire's and a primary patch's are
-  // sharper: see shot_rules()).
-  struct ShotRules {
-    bool from_luminaire = false, primary = false, sharp = false;
-    int max_generation = 0, detail_generation = 0;  // how deep elements may go (detail: on Patch::detail)
-    OracleThresholds oracle, detail_oracle;
-    Rgb ambient_now;  // for the push-down oracle (OracleThresholds::pushdown_ambient)
-  };
-  // The walk's lists: this level's elements, what it passes on, where the shot stopped.
-  struct ShotWalk {
-    std::vector<ElementId> level, next;
-    std::vector<ElementId> passed;     // the shot goes on below them
-    std::vector<ElementId> subdivide;  // leaves among them, to split
-    std::vector<ElementId> ready;      // existing elements of the next level
-    std::vector<ElementId> terminals;  // the shot stopped there
-    std::vector<double> reach;         // per terminal
-    // Adaptive: children of a leaf split in this shot, which the walk splits again to
-    // complete the 1 -> 4 split (sorted), this level's and the next's.
-    std::vector<ElementId> complete_split, complete_split_next;
-  };
+  std::vector<WalkChunk> walk_chunks_;  // shot_walk.h
   void start_heartbeat();
   // Picks the sender (sender_) and starts its shot: its light leaves its unshot
   // radiosity, its shape is set. False when nothing is left to shoot.
@@ -466,7 +371,7 @@ class Solver {
   // larger than the model's faces (a box of 2 m faces at patch size 10) still refine.
   double patch_area_ = 0;
 
-  // Sender groups (SolveOptions::group_radius; mesh/plane_groups.h; solver_groups.cpp).
+  // Sender groups (SolveOptions::group_radius; mesh/core/plane_groups.h; solver_groups.cpp).
   // The patches on their own (not in a face cluster) are grouped with their neighbours
   // in one plane: a group sends what all its patches hold in one shot, from its first
   // patch's id (its leader), and each patch keeps receiving on its own. The light a
@@ -513,7 +418,6 @@ class Solver {
   // point-to-area form A cos cos / (pi r^2) instead (relative error about 0.25%, 0.5% at
   // 8 radii: measured against numerical integration over a right triangle).
   double group_closed_form(const Vec3d& x, const Vec3d& n, double* terms = nullptr) const;
-  static constexpr double kMemberFar = 12.0;
 
   // Face clusters (SolveOptions::cluster_area; solver_clusters.cpp). A cluster far from
   // the sender (kClusterFar of its radii from the sender's bounding sphere, or the sky)
@@ -525,8 +429,6 @@ class Solver {
   // its point (Wallace et al. 1989's A cos cos / (pi r^2 + A), which stays finite near),
   // weighted by its share of the power; the fraction of seeded rays to parts picked in
   // proportion to their terms that arrive gives visibility, as a patch's rays do.
-  static constexpr double kClusterFar = 4.0;
-  static constexpr double kDetailFacet = 8.0;  // 8 x patch_area: the patch size squared
   FaceClusters clusters_;
   std::vector<std::uint32_t> standalone_;  // patches in no cluster, in id order
   struct ClusterState {
@@ -656,10 +558,6 @@ class Solver {
     double seen_fraction() const { return open.luminance() > 0 ? seen.luminance() / open.luminance() : 1.0; }
   };
   DirectLight direct_light(const Vec3d& x, const Vec3d& n, std::uint64_t key) const;
-  static constexpr std::size_t kDirectPatches = 16;  // the brightest emitting patches looked at
-  static constexpr double kDirectShare = 0.9;        // of the patches' emitted power, or none
-  static constexpr int kDirectRays = 16;             // per emitting patch and point, after 4 that disagree
-  static constexpr double kDirectGapWeight = 2.0 / 3;    // its weight in the estimate's mesh part
   std::vector<std::uint32_t> direct_sources_;        // luminaires but the sky, then patches
   bool direct_sources_chosen_ = false;
   std::vector<float> direct_gap_;      // per element; < 0: not yet computed
@@ -681,7 +579,6 @@ class Solver {
   // hundredth: the office building's 36 luminaire shots made 4.09 M elements, 2.5 GB; a
   // fiftieth: 3.42 M, 2.2 GB, the luminaire tests' closed forms unchanged.)
   bool shadow_resolved(ElementId q) const;
-  static constexpr double kShadowResolution = 0.02;
   struct Receiver {
     VertexHandle vertex;
     std::uint32_t patch;  // of the first element that has it (its facing is the receiver's)

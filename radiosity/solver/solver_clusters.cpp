@@ -1,4 +1,4 @@
-// Face clusters in the solver (see solver.h, "Face clusters", and mesh/face_clusters.h):
+// Face clusters in the solver (see solver.h, "Face clusters", and mesh/core/face_clusters.h):
 // building them, their verdict in a shot, receiving as one, flushing to their patches,
 // and shooting as one sender.
 #include "radiosity/solver/solver.h"
@@ -13,6 +13,13 @@
 #include <cmath>
 
 namespace dynrad::rad {
+
+namespace {
+
+// A cluster this many of its radii from the sender receives as one (solver.h, "Face clusters").
+constexpr double kClusterFar = 4.0;
+
+}  // namespace
 
 void Solver::build_clusters() {
   standalone_.clear();

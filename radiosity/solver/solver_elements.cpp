@@ -15,6 +15,14 @@
 
 namespace dynrad::rad {
 
+namespace {
+
+// The near-field corrections' share and rays (Solver::near_seen_share).
+constexpr double kNearFieldShare = 0.05;
+constexpr int kNearRays = 4;
+
+}  // namespace
+
 void Solver::gather_new_elements(std::size_t first) {
   // Earlier shots, and the current one (the sender's unshot was moved to current_shot_).
   // Luminaires that have shot (the current one included) come first, as they shot.

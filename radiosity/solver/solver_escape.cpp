@@ -12,6 +12,13 @@
 
 namespace dynrad::rad {
 
+namespace {
+
+// Rays for a rough lost fraction (Solver::rough_lost_fraction).
+constexpr int kRoughEscapeRays = 64;
+
+}  // namespace
+
 // Fraction of the power patch `id` shoots that reaches no front face (it leaves the
 // scene or meets a black back side): cosine-weighted rays from points on the patch,
 // stratified over the hemisphere, once per patch. Exactly 0 in a closed room.

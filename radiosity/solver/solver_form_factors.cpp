@@ -15,6 +15,21 @@
 
 namespace dynrad::rad {
 
+namespace {
+
+// Solver::settle_visibility: a corner is cast again when the sender's unoccluded light
+// there is at least this share of what it holds (kSettleShareReflected for reflected light).
+constexpr double kSettleShare = 0.05;
+constexpr double kSettleShareReflected = 0.2;
+// 3/4 at the centroid and 1/12 at each corner integrates quadratics exactly.
+constexpr double kCentroidWeight = 0.75;
+// estimate_pushdown_error(): distance, in sender radii, from which the midpoint
+// estimate uses the point-to-area form (its error relative to the estimate is about
+// (1 / kFarField)^2).
+constexpr double kFarField = 5.0;
+
+}  // namespace
+
 void Solver::compute_form_factors(const std::vector<ElementId>& elements) {
   parallel_for_index(elements.size(), 8, [&](std::size_t n) { compute_corner_form_factors(elements[n]); });
 }

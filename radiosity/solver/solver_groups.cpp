@@ -1,4 +1,4 @@
-// Sender groups in the solver (see solver.h, "Sender groups", and mesh/plane_groups.h):
+// Sender groups in the solver (see solver.h, "Sender groups", and mesh/core/plane_groups.h):
 // building them and shooting from one.
 #include "radiosity/solver/solver.h"
 
@@ -11,6 +11,13 @@
 #include <cmath>
 
 namespace dynrad::rad {
+
+namespace {
+
+// Solver::group_closed_form: from this many of its radii a member counts by the point-to-area form.
+constexpr double kMemberFar = 12.0;
+
+}  // namespace
 
 void Solver::build_groups() {
   PlaneGroupOptions o;

@@ -11,6 +11,12 @@
 
 namespace dynrad::rad {
 
+namespace {
+
+constexpr double kShadowResolution = 0.02;
+
+}  // namespace
+
 double Solver::estimate_pushdown_error(ElementId q, const Rgb& reflectance, OracleInputs& in,
                                        std::array<double, 3>& mid) const {
   const double shot = (reflectance * current_shot_).luminance();

@@ -1,5 +1,5 @@
 // Shaped senders: a patch's radiosity across its surface, not its mean, shapes what
-// it sends (see Solver::SenderShape in solver.h).
+// it sends (sender_shape.h).
 #include "radiosity/solver/solver.h"
 
 #include "radiosity/transfer/form_factor.h"
@@ -38,7 +38,7 @@ void Solver::shape_sender() {
   shape_ = shape_of(sender_, current_shot_.luminance() / options_.overshoot);
 }
 
-Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
+SenderShape Solver::shape_of(std::uint32_t patch, double m) {
   Patch& sender = patches_[patch];
   const ElementId root = hierarchy_.patch_root(patch);
   Vec3d node[kTriangleNodes];
@@ -69,12 +69,12 @@ Solver::SenderShape Solver::shape_of(std::uint32_t patch, double m) {
   return shape_from_nodes(sender.corners, b, m, fine);
 }
 
-Solver::SenderShape Solver::shipped_shape(std::uint32_t patch) const {
+SenderShape Solver::shipped_shape(std::uint32_t patch) const {
   const Patch& sender = patches_[patch];
   return shape_from_nodes(sender.corners, sender.shot_at_nodes.data(), sender.shot.luminance(), true);
 }
 
-Solver::SenderShape Solver::shape_from_nodes(const std::array<Vec3d, 3>& c, const double* b, double m, bool fine) {
+SenderShape shape_from_nodes(const std::array<Vec3d, 3>& c, const double* b, double m, bool fine) {
   SenderShape shape;
   if (!(std::abs(m) > 0)) return shape;
   const auto& part_nodes = triangle_part_nodes();
@@ -114,9 +114,9 @@ Solver::SenderShape Solver::shape_from_nodes(const std::array<Vec3d, 3>& c, cons
   return shape;
 }
 
-double Solver::shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
-                                  const Vec3d& centre, double radius, double area, const Vec3d& normal,
-                                  const SenderShape& shape) {
+double shaped_closed_form(const Vec3d& x, const Vec3d& n, const std::array<Vec3d, 3>& corners,
+                          const Vec3d& centre, double radius, double area, const Vec3d& normal,
+                          const SenderShape& shape) {
   if (shape.on && (x - centre).sqrnorm() < kShapeNear * kShapeNear * radius * radius)
     return shape.fine ? point_to_parted_triangle(x, n, corners.data(), shape.weight.data(), normal)
                       : point_to_quartered_triangle(x, n, corners.data(), shape.coarse.data(), normal);

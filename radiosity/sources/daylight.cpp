@@ -2,7 +2,7 @@
 #include "radiosity/sources/daylight.h"
 
 #include "mesh/load.h"
-#include "mesh/ray_cast.h"
+#include "mesh/core/ray_cast.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/transfer/visibility.h"
 

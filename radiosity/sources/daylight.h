@@ -20,7 +20,7 @@
 // L the sky model's luminance (the ground's below the horizon), T the transmittance
 // along d (0 where d meets a surface of the model). In two parts that share no
 // direction:
-// - Through the portals: the panes (glass, and the openings of mesh/openings.h) that
+// - Through the portals: the panes (glass, and the openings of mesh/core/openings.h) that
 //   cover at least one stratum's share of x's sky. Each is integrated over its own solid
 //   angle (Arvo's map of a spherical triangle, stratum centres), a direction counting
 //   for the first pane it crosses. A point beside a wall sees an opening in that wall as
@@ -59,7 +59,7 @@ class Visibility;
 struct Luminaire;
 
 // The windows, for rays from inside to outside: the glass, and the openings
-// (mesh/openings.h) as panes that pass everything. The sky is sampled through each of
+// (mesh/core/openings.h) as panes that pass everything. The sky is sampled through each of
 // them as a portal (daylight_illuminance).
 class Glazing {
  public:

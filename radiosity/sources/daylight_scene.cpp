@@ -1,5 +1,5 @@
 // The "sky" section of a JSON scene file (see daylight.h for the keys).
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
 #include "radiosity/sources/perez.h"
 #include "radiosity/sources/daylight.h"

@@ -30,7 +30,7 @@
 // than one lamp set: their fluxes are added (a luminaire with two kinds of lamps), with
 // a warning, since some writers list alternative equipment instead.
 // The stated luminaire flux is LORL / 100 x the lamps' flux.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/photometry.h"
 #include "radiosity/sources/photometry_parse.h"
 

@@ -22,8 +22,8 @@
 // with a stray value or a second copy of the last line, and nothing after the table
 // belongs to the format. TILT=<file name> (tilt data in a separate file) is refused:
 // the file would depend on another that is usually lost on the way.
-#include "mesh/error.h"
-#include "mesh/text_lines.h"
+#include "mesh/core/error.h"
+#include "mesh/io/text_lines.h"
 #include "radiosity/sources/photometry.h"
 #include "radiosity/sources/photometry_parse.h"
 

@@ -14,7 +14,7 @@
 // that value, unless `colour` tints it (scaled to luminance 1, so the flux stays).
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 #include "radiosity/sources/photometry.h"
 
 #include <cstdint>

@@ -31,7 +31,7 @@
 //                         n1 x n2 copies from "position", named "<name>.i.j"
 //
 // Unknown keys are errors, as in the rest of the scene file.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/sources/scene_json.h"
 

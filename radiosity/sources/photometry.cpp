@@ -17,8 +17,8 @@
 // cosine tabulated every 5 degrees.
 #include "radiosity/sources/photometry.h"
 
-#include "mesh/error.h"
-#include "mesh/io_util.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
 #include "radiosity/sources/photometry_parse.h"
 
 #include <algorithm>

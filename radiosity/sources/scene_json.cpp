@@ -1,7 +1,7 @@
 #include "radiosity/sources/scene_json.h"
 
-#include "mesh/error.h"
-#include "mesh/io_util.h"
+#include "mesh/core/error.h"
+#include "mesh/io/io_util.h"
 
 #include <cctype>
 #include <cmath>

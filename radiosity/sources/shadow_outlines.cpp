@@ -1,6 +1,6 @@
 #include "radiosity/sources/shadow_outlines.h"
 
-#include "mesh/line_insertion.h"
+#include "mesh/core/line_insertion.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/transfer/visibility.h"
 

@@ -5,7 +5,7 @@
 // A luminaire small for its distance, or the sun, lights a surface with a jump where an
 // occluder's edge cuts its light off. Across elements, that jump shows as a staircase
 // at the element size, however deep refinement goes. Here the jump's line is found
-// before lighting and inserted into the mesh (mesh/line_insertion.h), as two lines a
+// before lighting and inserted into the mesh (mesh/core/line_insertion.h), as two lines a
 // small distance either side of it: the strip between them holds the jump, and the
 // elements either side are wholly lit or wholly in shadow, so interpolating between
 // their corners is right up to the strip. The strip's elements are not refined
@@ -22,7 +22,7 @@
 // bisection.
 #pragma once
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 #include "radiosity/sources/luminaire.h"
 
 #include <cstddef>
@@ -55,7 +55,7 @@ struct ShadowOutlineReport {
   std::size_t outlines = 0;          // straight pieces of outline on a surface
   std::size_t lines = 0;             // lines inserted (up to two per outline)
   std::size_t vertices_added = 0;
-  std::size_t flips = 0;  // edges flipped beside the lines (mesh/line_insertion.h)
+  std::size_t flips = 0;  // edges flipped beside the lines (mesh/core/line_insertion.h)
   double seconds = 0;
 };
 

@@ -25,7 +25,7 @@
 // +x when north is +y.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <string>
 

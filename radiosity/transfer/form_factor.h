@@ -3,7 +3,7 @@
 // polygon's share of the point's cosine-weighted hemisphere.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <array>
 #include <cmath>

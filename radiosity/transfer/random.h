@@ -3,7 +3,7 @@
 // directions) draws from a seed of its own, so results do not depend on threads.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <algorithm>
 #include <array>

@@ -20,7 +20,7 @@
 // local to a node that receives little of this sender anyway.
 #pragma once
 
-#include "mesh/types.h"
+#include "mesh/core/types.h"
 
 #include <cstdint>
 #include <functional>

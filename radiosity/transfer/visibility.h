@@ -7,7 +7,7 @@
 // distance relative to the scene size.
 #pragma once
 
-#include "mesh/scene_mesh.h"
+#include "mesh/core/scene_mesh.h"
 
 #include <embree3/rtcore.h>
 

@@ -9,7 +9,7 @@
 // not weather: a site out of range, hours out of order, repeated or with a gap, a NaN,
 // negative or impossible value where the reader promises a number, or the two reads
 // disagreeing (a whole year read must also read as part of one, the same hours).
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/climate/epw.h"
 
 #include <array>

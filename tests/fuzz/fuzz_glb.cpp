@@ -1,10 +1,10 @@
-// libFuzzer target for the reader `dynrad view` checks a .glb with (mesh/read_glb.h): the
+// libFuzzer target for the reader `dynrad view` checks a .glb with (mesh/io/read_glb.h): the
 // input bytes are the file. InputError is the expected answer to bad input and is
 // caught here. Anything else is a bug the fuzzer reports: another exception escaping, a
 // crash, a sanitizer finding, or a file accepted that the page could not show: no
 // triangles, no vertices, bounds that are not finite, a scalar attribute without values.
-#include "mesh/error.h"
-#include "mesh/read_glb.h"
+#include "mesh/core/error.h"
+#include "mesh/io/read_glb.h"
 
 #include <cmath>
 #include <cstdint>

@@ -12,9 +12,9 @@
 //   scene  the input is scene.json, next to fixed mesh files it may refer to
 //          (room.obj + room.mtl, panel.off, box.ply, tri.stl, downlight.ies; see
 //          write_scene_meshes).
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "mesh/load.h"
-#include "mesh/refinement.h"
+#include "mesh/core/refinement.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/design/emergency.h"
 #include "radiosity/design/glare.h"

@@ -5,7 +5,7 @@
 // a bug the fuzzer reports: another exception escaping, a crash, a sanitizer finding,
 // or a read that succeeds with a distribution that is not one: a NaN, negative or
 // infinite intensity or flux, angles out of order, a table of the wrong size.
-#include "mesh/error.h"
+#include "mesh/core/error.h"
 #include "radiosity/sources/photometry.h"
 
 #include <cmath>
