@@ -30,7 +30,7 @@ import threading
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
-from . import capi, design_props, design_ui
+from . import capi, design_props, design_results, design_ui
 
 bl_info = {
     "name": "dynrad radiosity",
@@ -235,15 +235,8 @@ def selected_meshes(context):
 
 def add_result_object(context, result, soup, name):
     """A new object with the refined mesh, its materials and both colour attributes."""
-    mesh = bpy.data.meshes.new(name)
-    n, t = result.vertex_count, result.triangle_count
-    mesh.vertices.add(n)
-    mesh.vertices.foreach_set("co", [float(x) for x in result.positions])
-    mesh.loops.add(3 * t)
-    mesh.loops.foreach_set("vertex_index", result.triangles)
-    mesh.polygons.add(t)
-    mesh.polygons.foreach_set("loop_start", range(0, 3 * t, 3))
-    mesh.polygons.foreach_set("loop_total", [3] * t)
+    mesh = design_results.triangle_mesh(name, result)
+    n = result.vertex_count
     for material in soup.blender_materials:
         mesh.materials.append(material)
     mesh.polygons.foreach_set("material_index", result.triangle_materials)

@@ -277,13 +277,10 @@ def _apply_options(library, c_options, options):
         library.check(setter(c_options, value.encode() if isinstance(value, str) else value))
 
 
-def solve_file(library, path, options, report_path=None, progress=None, cancel=None):
-    """Loads a scene file (dynrad_scene_load: as `dynrad solve` reads it) and solves it
-    with `options` (as for solve()). With `report_path`, also writes the HTML lighting
-    report there (dynrad_result_write_report), with its pictures beside it, before the
-    result is released. Returns a Result."""
-    scene = ctypes.c_void_p()
-    library.check(library.dynrad_scene_load(path.encode(), ctypes.byref(scene)))
+def _solve_scene(library, scene, options, progress, cancel, report_path=None):
+    """Solves `scene` (a dynrad_scene handle, destroyed here whatever happens) with
+    `options`; with `report_path`, writes the HTML report before the result is released.
+    Returns a Result."""
     c_options = ctypes.c_void_p()
     result = ctypes.c_void_p()
     try:
@@ -307,6 +304,16 @@ def solve_file(library, path, options, report_path=None, progress=None, cancel=N
         library.dynrad_result_destroy(result)
         library.dynrad_options_destroy(c_options)
         library.dynrad_scene_destroy(scene)
+
+
+def solve_file(library, path, options, report_path=None, progress=None, cancel=None):
+    """Loads a scene file (dynrad_scene_load: as `dynrad solve` reads it) and solves it
+    with `options` (as for solve()). With `report_path`, also writes the HTML lighting
+    report there (dynrad_result_write_report), with its pictures beside it, before the
+    result is released. Returns a Result."""
+    scene = ctypes.c_void_p()
+    library.check(library.dynrad_scene_load(path.encode(), ctypes.byref(scene)))
+    return _solve_scene(library, scene, options, progress, cancel, report_path)
 
 
 def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials, materials, options,
@@ -342,24 +349,4 @@ def solve(library, positions, polygon_sizes, polygon_indices, polygon_materials,
             pointer(polygon_indices, "I", ctypes.c_uint32), pointer(polygon_sizes, "I", ctypes.c_uint32),
             len(polygon_sizes), pointer(polygon_materials, "I", ctypes.c_uint32),
             c_materials, len(materials), ctypes.byref(scene)))
-    c_options = ctypes.c_void_p()
-    result = ctypes.c_void_p()
-    try:
-        library.check(library.dynrad_options_create(ctypes.byref(c_options)))
-        _apply_options(library, c_options, options)
-
-        def on_progress(shot, unshot, _user):
-            try:
-                return 1 if progress and progress(shot, unshot) else 0
-            except Exception:  # an exception cannot cross C; stop the solve instead
-                return 1
-
-        callback = PROGRESS_FN(on_progress)
-        cancel_pointer = ctypes.pointer(cancel) if cancel is not None else None
-        status = library.check(library.dynrad_solve(scene, c_options, callback, None, cancel_pointer,
-                                                    ctypes.byref(result)))
-        return Result(library, result, status == STOPPED)
-    finally:
-        library.dynrad_result_destroy(result)
-        library.dynrad_options_destroy(c_options)
-        library.dynrad_scene_destroy(scene)
+    return _solve_scene(library, scene, options, progress, cancel)

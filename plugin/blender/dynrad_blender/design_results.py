@@ -43,7 +43,8 @@ def scale_top(result, requested):
     return legend_top(grid_peak if grid_peak > 0 else percentile(result.illuminance, 0.98))
 
 
-def _lit_mesh(library, result, name, top, unit):
+def triangle_mesh(name, result):
+    """A new Blender mesh holding the result's refined triangles (no attributes yet)."""
     mesh = bpy.data.meshes.new(name)
     n, t = result.vertex_count, result.triangle_count
     mesh.vertices.add(n)
@@ -53,6 +54,12 @@ def _lit_mesh(library, result, name, top, unit):
     mesh.polygons.add(t)
     mesh.polygons.foreach_set("loop_start", range(0, 3 * t, 3))
     mesh.polygons.foreach_set("loop_total", [3] * t)
+    return mesh
+
+
+def _lit_mesh(library, result, name, top, unit):
+    mesh = triangle_mesh(name, result)
+    n = result.vertex_count
     mesh.update()
     mesh.validate()
 
