@@ -96,7 +96,7 @@ int run_annual(const AnnualCliOptions& options) {
   if (grids.empty())
     throw InputError(options.load.input, 0,
                      "annual daylight is computed on calculation grids, and the scene has none: add \"grids\" (see "
-                     "docs/lighting-design.md).");
+                     "docs/scene-reference.md, grids[]).");
   for (const rad::GridSpec& g : grids)
     if (g.up != 2)
       throw InputError(options.load.input, 0,

@@ -77,7 +77,8 @@ struct SolveCliOptions {
   double exposure = 0;    // 0: automatic
   bool ascii = false;
   std::size_t max_triangles = 500000;  // decimate the written mesh above this (0: never)
-  // "auto": photometric (lux, cd/m^2) when the scene has luminaires, else radiometric.
+  // "auto": photometric (lux, cd/m^2) when the scene has luminaires or a sky (a luminaire
+  // here), else radiometric.
   std::string units = "auto";
   rad::SolveOptions solve;
 };
@@ -353,17 +354,23 @@ int run_solve(SolveCliOptions& options) {
                  100 * report.unshot_fraction);
     return kExitInterrupted;
   }
+  // The error and the target with as many decimals as it takes to tell them apart (an
+  // error of 1.004% against a target of 1% would otherwise read "1.00%, above 1.00%").
+  int decimals = 2;
+  while (decimals < 4 && fmt::format("{:.{}f}", 100 * report.estimated_error.total(), decimals) ==
+                             fmt::format("{:.{}f}", 100 * options.solve.error_target, decimals))
+    ++decimals;
   if (report.stopped_by == rad::StopReason::error_floor)
-    spdlog::warn("the estimated error is {:.2f}%, above the target {:.2f}%, and what is left is the mesh's ({:.2f}%): "
+    spdlog::warn("the estimated error is {:.{}f}%, above the target {:.{}f}%, and what is left is the mesh's ({:.2f}%): "
                  "shooting longer would not help. Try --quality high, or a smaller --patch-size or a larger "
                  "--max-level.",
-                 100 * report.estimated_error.total(), 100 * options.solve.error_target,
+                 100 * report.estimated_error.total(), decimals, 100 * options.solve.error_target, decimals,
                  100 * (report.estimated_error.discretisation + report.estimated_error.shadows));
   else if (report.stopped_by == rad::StopReason::error_target && report.estimated_error.total() > options.solve.error_target)
-    spdlog::info("the estimated error is {:.2f}%, above the target {:.2f}%: {:.2f}% of it is shadows' edges inside "
+    spdlog::info("the estimated error is {:.{}f}%, above the target {:.{}f}%: {:.2f}% of it is shadows' edges inside "
                  "elements, which shooting longer does not change; the PLY's `error` shows where they are, and a "
                  "smaller --patch-size or a higher --quality draws them more finely.",
-                 100 * report.estimated_error.total(), 100 * options.solve.error_target,
+                 100 * report.estimated_error.total(), decimals, 100 * options.solve.error_target, decimals,
                  100 * report.estimated_error.shadows);
   else if (!rad::reached_target(report.stopped_by))
     spdlog::warn("stopped by {} with {:.2f}% of the emitted power not yet shot (target {:.2f}%).", rad::to_string(report.stopped_by),
@@ -418,7 +425,8 @@ Command add_solve_command(CLI::App& app) {
   command->add_option("--max-elements", options->max_elements,
                       "Stop refining (and go on solving) once the element tree holds this many (0: no limit)");
   command->add_option("--memory-budget", options->memory_budget_mb,
-                      "Stop refining (and go on solving) once the process uses this many MiB (0: no limit)")
+                      "Stop refining (and go on solving) once the process uses this many MiB (default: half of the memory "
+                      "available at the start; 0: no limit)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--converge", options->converge,
                       "Stop when unshot power falls below this fraction of emitted, instead of by estimated error "
@@ -466,7 +474,7 @@ Command add_solve_command(CLI::App& app) {
                       "moves by more than 1% (at least 1 of 255) and the surface stays the same (0: never)")
       ->capture_default_str();
   command->add_option("--units", options->units,
-                      "auto, photometric or radiometric. Photometric (the default when the scene has luminaires): "
+                      "auto, photometric or radiometric. Photometric (the default when the scene has luminaires or a sky): "
                       "lumens, lux and cd/m^2; emitting faces' W/m^2 are converted at 179 lm/W. The PLY then also "
                       "holds float 'illuminance' (lx, also in 'quality') and 'luminance' (cd/m^2)")
       ->capture_default_str();
