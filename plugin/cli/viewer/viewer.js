@@ -116,7 +116,7 @@
     return c <= 0.0031308 ? 12.92 * c : Math.min(1, 1.055 * Math.pow(c, 1 / 2.4) - 0.055);
   }
 
-  // The same stops as the report's false-colour pictures (plugin/cli/grid_picture.cpp).
+  // The same stops as the report's false-colour pictures (plugin/report/grid_picture.cpp).
   function falseColour(t, out) {
     const stops = config.palette;
     t = Math.min(1, Math.max(0, t)) * (stops.length - 1);
@@ -204,7 +204,7 @@
     document.getElementById('top').value = state.top;
   }
 
-  // The legend's top, as the report's pictures choose it (plugin/cli/grid_picture.cpp's
+  // The legend's top, as the report's pictures choose it (plugin/report/grid_picture.cpp's
   // legend_scale): the least of 1, 2, 2.5, 5 and 10 times a power of ten at or above the
   // 98th percentile of the vertices' luminance.
   function automaticTop() {
