@@ -5,6 +5,7 @@
 #include "plugin/report/design_output.h"
 #include "plugin/report/grid_output.h"
 #include "plugin/report/html_report.h"
+#include "plugin/report/report_document.h"
 #include "plugin/report/view_output.h"
 #include "radiosity/analysis/views.h"
 #include "radiosity/pipeline/report_json.h"
@@ -27,28 +28,22 @@ void write_report(const std::string& html, const ReportInputs& inputs) {
   report::check_view_outputs(prefix, cameras, scene_file, html);
   check_output_writable(html);
 
-  // The report as `dynrad solve` assembles it (plugin/cli/cmd_solve.cpp).
-  nlohmann::json j = rad::solve_report_json(prepared, solved, inputs.exposure);
-  j["dynrad_version"] = inputs.version;
-  j["input"] = inputs.input;
-  j["output"] = "none: the lit mesh is the host's (C ABI)";
-  j["grids"] = nlohmann::json::array();
+  report::ReportHost host;
+  host.version = inputs.version;
+  host.input = inputs.input;
+  host.output = "none: the lit mesh is the host's (C ABI)";
   if (!solved.grids.empty())
-    j["grids"] = report::write_grid_results(prefix, inputs.input, solved.grids, prepared.photometric);
-  std::vector<report::ViewPictures> pictures;
+    host.grids = report::write_grid_results(prefix, inputs.input, solved.grids, prepared.photometric);
   if (scene_file) {
     rad::ViewOptions view_options;
     view_options.exposure = inputs.exposure;
     const std::vector<rad::View> views =
         rad::merge_views(cameras, rad::automatic_views(*solved.lit, prepared.grids, view_options));
-    pictures = report::write_views(prefix, *solved.lit, views, inputs.exposure);
+    host.pictures = report::write_views(prefix, *solved.lit, views, inputs.exposure);
   }
-  j["views"] = report::views_json(pictures);
-  j["luminaires"] = nlohmann::json::array();
-  for (const rad::Luminaire& l : solved.solver->luminaires()) j["luminaires"].push_back(report::luminaire_json(l));
-  if (scene_file) report::add_design_checks(j, prepared.request.path, *solved.lit, solved.grids);
   if (!prepared.light_scenes.empty())
-    j["scenes"] = report::light_scene_results(prepared.light_scenes, prepared.channels, solved.grids);
+    host.scenes = report::light_scene_results(prepared.light_scenes, prepared.channels, solved.grids);
+  const nlohmann::json j = report::report_document(prepared, solved, inputs.exposure, host);
   report::write_html_report(html, j);
 }
 

@@ -15,6 +15,7 @@
 #include "plugin/report/design_output.h"
 #include "plugin/report/grid_output.h"
 #include "plugin/report/html_report.h"
+#include "plugin/report/report_document.h"
 #include "plugin/cli/pdf_report.h"
 #include "plugin/report/view_output.h"
 #include "plugin/report/png.h"
@@ -196,7 +197,6 @@ int run_solve(SolveCliOptions& options) {
   progress.finish();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  const rad::Solver& solver = *solved.solver;
   rad::SolveReport& report = solved.report;
   // Output: per-vertex radiosity, display colours through an exposure.
   rad::Solver::Output& result = solved.output;
@@ -320,17 +320,14 @@ int run_solve(SolveCliOptions& options) {
                written_triangles, hierarchy.element_count());
 
   {
-    // The solve's part (radiosity/pipeline/report_json.h), then the command's own.
-    nlohmann::json j = rad::solve_report_json(prepared, solved, exposure);
-    j["dynrad_version"] = DYNRAD_VERSION;
-    j["input"] = options.load.input;
-    j["output"] = options.output;
-    j["grids"] = grid_results;
-    j["views"] = views_json(pictures);
-    j["luminaires"] = nlohmann::json::array();
-    for (const rad::Luminaire& l : solver.luminaires()) j["luminaires"].push_back(luminaire_json(l));
-    if (scene_lit) add_design_checks(j, options.load.input, *scene_lit, gathered);
-    if (!scenes_report.empty()) j["scenes"] = scenes_report;
+    ReportHost host;
+    host.version = DYNRAD_VERSION;
+    host.input = options.load.input;
+    host.output = options.output;
+    host.grids = grid_results;
+    host.scenes = scenes_report;
+    host.pictures = pictures;
+    const nlohmann::json j = report_document(prepared, solved, exposure, host);
     if (!options.report.empty()) {
       AtomicFile file(options.report, std::ios::out);
       file.stream() << j.dump(2) << "\n";
