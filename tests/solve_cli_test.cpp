@@ -214,6 +214,22 @@ TEST(DiffCommand, ZeroAgainstItselfAndHalfForHalfTheLight) {
                                     "' -o '" + dir.path("x.ply") + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("radiosity_r"), std::string::npos) << bad.output;
+  // Units: W/m2 for radiometric meshes, lm/m2 for photometric ones, and no comparison
+  // of one with the other.
+  EXPECT_NE(half.output.find("(luminance, W/m2)"), std::string::npos) << half.output;
+  ASSERT_EQ(test::run_dynrad("solve '" + test::sample("cornell_box.obj") + "' -o '" + dir.path("lux.ply") + "'" +
+                             common + " --units photometric")
+                .exit_code,
+            0);
+  const auto lux = test::run_dynrad("diff '" + dir.path("lux.ply") + "' '" + dir.path("lux.ply") + "' -o '" +
+                                    dir.path("lux_diff.ply") + "'");
+  ASSERT_EQ(lux.exit_code, 0) << lux.output;
+  EXPECT_NE(lux.output.find("(luminance, lm/m2)"), std::string::npos) << lux.output;
+  const auto mixed = test::run_dynrad("diff '" + dir.path("full.ply") + "' '" + dir.path("lux.ply") + "' -o '" +
+                                      dir.path("mixed.ply") + "'");
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find("same --units"), std::string::npos) << mixed.output;
+  EXPECT_FALSE(test::file_exists(dir.path("mixed.ply")));
 }
 
 }  // namespace

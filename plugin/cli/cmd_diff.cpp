@@ -30,6 +30,7 @@ struct Lit {
   LitMesh mesh;
   std::vector<Rgb> value;
   std::vector<LitMesh::Point> inward;  // per vertex: unit direction from it into its faces
+  bool photometric = false;  // written with --units photometric: it has `luminance`, radiosity in lm/m^2
 };
 
 Lit read_lit(const std::string& path) {
@@ -45,6 +46,8 @@ Lit read_lit(const std::string& path) {
     if (!lit.mesh.get_property_handle(channel[c], names[c]))
       throw InputError(path, 0, std::string("has no '") + names[c] +
                                     "' vertex property; diff compares PLY files written by dynrad solve.");
+  OpenMesh::VPropHandleT<float> luminance;
+  lit.photometric = lit.mesh.get_property_handle(luminance, "luminance");
   lit.mesh.update_normals();
   for (auto v : lit.mesh.vertices())
     lit.value.emplace_back(lit.mesh.property(channel[0], v), lit.mesh.property(channel[1], v),
@@ -70,6 +73,11 @@ int run_diff(const DiffOptions& options) {
   check_output_writable(options.output);
   const Lit a = read_lit(options.a);
   const Lit b = read_lit(options.b);
+  if (a.photometric != b.photometric)
+    throw InputError(options.b, 0,
+                     std::string("holds ") + (b.photometric ? "photometric (lm/m^2)" : "radiometric (W/m^2)") +
+                         " values and " + options.a + " " + (a.photometric ? "photometric" : "radiometric") +
+                         " ones: solve both with the same --units to compare them.");
   // B's faces in a uniform grid (cells of B's longest edge), by bounding box.
   double cell = 0;
   for (auto e : b.mesh.edges()) cell = std::max(cell, static_cast<double>(b.mesh.calc_edge_length(e)));
@@ -158,7 +166,7 @@ int run_diff(const DiffOptions& options) {
   write_triangles_with_values(options.output, positions, triangles, values, write);
 
   std::cout << fmt::format("vertices     {} in A, {} matched in B, {} unmatched\n", a.mesh.n_vertices(), matched, unmatched);
-  std::cout << fmt::format("rms |A-B|    {:.6g} (luminance, W/m2)\n", rms);
+  std::cout << fmt::format("rms |A-B|    {:.6g} (luminance, {})\n", rms, a.photometric ? "lm/m2" : "W/m2");
   std::cout << fmt::format("max |A-B|    {:.6g}\n", largest);
   std::cout << fmt::format("rms A        {:.6g}\n", rms_a);
   std::cout << fmt::format("relative rms {:.4f}%  (rms |A-B| / rms A)\n", rms_a > 0 ? 100 * rms / rms_a : 0.0);
