@@ -66,6 +66,22 @@ TEST(Validate, AnInterruptedRunKeepsWhatItDidAndCleansUp) {
   EXPECT_FALSE(std::filesystem::exists(work)) << work;
 }
 
+// A line copied from --list names its case (the title sits between id and variant there),
+// and only that case: 5.4 has three variants.
+TEST(Validate, ALineOfTheListNamesItsCase) {
+  const auto list = test::run_dynrad("validate --list");
+  ASSERT_EQ(list.exit_code, 0) << list.output;
+  const auto at = list.output.find("roof opening");
+  ASSERT_NE(at, std::string::npos) << list.output;
+  const auto start = list.output.rfind('\n', at) + 1;
+  const std::string line = list.output.substr(start, list.output.find('\n', at) - start);
+  const auto r = test::run_dynrad("validate --case '" + line + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("roof opening"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("facade opening"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("point source  "), std::string::npos) << r.output;
+}
+
 TEST(Validate, AnUnknownCaseIsNamed) {
   const auto r = test::run_dynrad("validate --case 9.9");
   EXPECT_EQ(r.exit_code, 2);

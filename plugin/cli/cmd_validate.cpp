@@ -216,9 +216,28 @@ Outcome run_case(const validate::Case& c, const fs::path& dir, const ValidateOpt
   return out;
 }
 
+// Runs of blanks as one space, none at the ends: a line copied from --list matches.
+std::string collapse_blanks(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    const bool blank = ch == ' ' || ch == '\t';
+    if (!blank) out.push_back(ch);
+    else if (!out.empty() && out.back() != ' ') out.push_back(' ');
+  }
+  if (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+// A case is named by its id, by the start of "id variant", or by the start of a line
+// of --list ("id title variant").
 bool matches(const std::vector<std::string>& patterns, const validate::Case& c) {
-  for (const std::string& s : patterns)
-    if (s == c.id || (c.id + " " + c.variant).rfind(s, 0) == 0) return true;
+  for (const std::string& s : patterns) {
+    const std::string p = collapse_blanks(s);
+    if (p.empty()) continue;
+    if (p == c.id || (c.id + " " + c.variant).rfind(p, 0) == 0 ||
+        collapse_blanks(c.id + " " + c.title + " " + c.variant).rfind(p, 0) == 0)
+      return true;
+  }
   return false;
 }
 
@@ -329,7 +348,7 @@ Command add_validate_command(CLI::App& app) {
   auto options = std::make_shared<ValidateOptions>();
   CLI::App* command = app.add_subcommand(
       "validate", "Run the analytical test cases of CIE 171:2006 and compare with their references (see docs/validation.md)");
-  command->add_option("--case", options->cases, "Only these cases: a section (5.11) or the start of 'id variant'");
+  command->add_option("--case", options->cases, "Only these cases: a section (5.11), the start of 'id variant', or a line of --list");
   command->add_option("--skip", options->skip, "Leave these cases out (as --case names them)");
   command->add_flag("--list", options->list, "List the cases and exit");
   command->add_option("--quality", options->quality, "Solve every case at this quality (draft, normal, high)")
