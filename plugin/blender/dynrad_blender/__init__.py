@@ -236,23 +236,14 @@ def selected_meshes(context):
 def add_result_object(context, result, soup, name):
     """A new object with the refined mesh, its materials and both colour attributes."""
     mesh = design_results.triangle_mesh(name, result)
-    n = result.vertex_count
     for material in soup.blender_materials:
         mesh.materials.append(material)
     mesh.polygons.foreach_set("material_index", result.triangle_materials)
     mesh.update()
     mesh.validate()
 
-    linear = mesh.color_attributes.new("radiosity", "FLOAT_COLOR", "POINT")
-    rgba = [1.0] * (4 * n)
-    for c in range(3):
-        rgba[c::4] = result.radiosity[c::3]
-    linear.data.foreach_set("color", rgba)
-    display = mesh.color_attributes.new("radiosity_display", "BYTE_COLOR", "POINT")
-    for c in range(3):
-        rgba[c::4] = [b / 255.0 for b in result.display[c::3]]
-    display.data.foreach_set("color_srgb", rgba)  # the bytes as they are: already sRGB
-    mesh.color_attributes.active_color = display
+    design_results.radiosity_attributes(mesh, result)
+    mesh.color_attributes.active_color = mesh.color_attributes["radiosity_display"]
     mesh.color_attributes.render_color_index = mesh.color_attributes.find("radiosity_display")
 
     obj = bpy.data.objects.new(name, mesh)

@@ -13,6 +13,7 @@ import math
 import os
 import re
 
+import bpy
 from mathutils import Vector
 
 from .materials import material_values
@@ -128,8 +129,6 @@ def luminaire_entry(obj):
     if settings.lumens > 0:
         entry["lumens"] = settings.lumens
     if settings.photometry:
-        import bpy  # only for the path of a .blend-relative file
-
         path = os.path.abspath(bpy.path.abspath(settings.photometry))
         if not os.path.isfile(path):
             raise DesignError("light '%s': its photometry file '%s' does not exist. Choose an IES or LDT file in "

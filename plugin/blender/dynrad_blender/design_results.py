@@ -57,6 +57,20 @@ def triangle_mesh(name, result):
     return mesh
 
 
+def radiosity_attributes(mesh, result):
+    """Adds the colour attributes `radiosity` (linear, float) and `radiosity_display`
+    (the command line's display bytes, sRGB) to the result's mesh."""
+    rgba = [1.0] * (4 * result.vertex_count)
+    linear = mesh.color_attributes.new("radiosity", "FLOAT_COLOR", "POINT")
+    for c in range(3):
+        rgba[c::4] = result.radiosity[c::3]
+    linear.data.foreach_set("color", rgba)
+    display = mesh.color_attributes.new("radiosity_display", "BYTE_COLOR", "POINT")
+    for c in range(3):
+        rgba[c::4] = [b / 255.0 for b in result.display[c::3]]
+    display.data.foreach_set("color_srgb", rgba)  # the bytes as they are: already sRGB
+
+
 def _lit_mesh(library, result, name, top, unit):
     mesh = triangle_mesh(name, result)
     n = result.vertex_count
@@ -73,14 +87,7 @@ def _lit_mesh(library, result, name, top, unit):
         rgba[4 * v:4 * v + 3] = [c / 255.0 for c in colour]
     false = mesh.color_attributes.new("false_colour", "BYTE_COLOR", "POINT")
     false.data.foreach_set("color_srgb", rgba)  # the scale's bytes as they are: sRGB
-    linear = mesh.color_attributes.new("radiosity", "FLOAT_COLOR", "POINT")
-    for c in range(3):
-        rgba[c::4] = result.radiosity[c::3]
-    linear.data.foreach_set("color", rgba)
-    display = mesh.color_attributes.new("radiosity_display", "BYTE_COLOR", "POINT")
-    for c in range(3):
-        rgba[c::4] = [b / 255.0 for b in result.display[c::3]]
-    display.data.foreach_set("color_srgb", rgba)
+    radiosity_attributes(mesh, result)
     # By name: adding attributes may move the earlier ones, leaving `false` stale.
     mesh.color_attributes.active_color = mesh.color_attributes["false_colour"]
     mesh.color_attributes.render_color_index = mesh.color_attributes.find("false_colour")
