@@ -34,7 +34,7 @@ root=$(pwd)
 # (the same: Python has no ASan runtime) are not run here; they run in the release
 # suite. The solver and import code they call run sanitized through
 # dynrad_tests.
-hosts='capi_test|blender_addon|blender_gltf|browser_walk|BrowserView\.|python_'
+hosts='capi_test|blender_|browser_walk|BrowserView\.|python_'
 exclude=(-E "$hosts")
 if [ "${1:-}" = "--ci" ]; then
   exclude=(-E "$hosts|Physics\.(ClosedRoomReflectsAllPowerUntilAbsorbed|NoLightThroughAWallSharedByTwoRooms|CornellFloorIsRedderNextToTheRedWall)/|Physics\.EnergyIsConservedAfterEveryShot/adaptive|Simplify\.SolveAgreesWithAndWithoutSimplification|Culling\.NegligibleReceiversCostAtMostTheirStatedShare|Junctions\.FloorByTheWallsIsLitAsIfItEndedThere/|BoxOnTheFloor\.|Storey\.|HostileInput\.HundredThousandMaterialsLoadInSeconds|ErrorEstimate\.BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality|Junctions\.HiddenPartsTakeNoLightAndTheBalanceHolds/adaptive|Luminaire\.PlateCastsAnUmbraWithNoDirectLight|ShapedSenders\.CloserToAFineSolutionThanEvenSenders|Views\.PreviewInsideAClosedBuildingIsNotBlack|Daylight\.GlazingScalesTheWholeSolveAndTheBalanceHolds|AssimpImport\.IfcHouseHasItsElementsStandsUpAndLights|DesignCli\.LightSceneEqualsASolveOfTheSameDimming|PdfGridCommand\.WritesA4ReportWithEachGrid|NoLostWork\.LongShotShowsProgressAndAStopWaitsForItsEnd|validate_cie171|DaylightCoefficients\.OneSolvesCoefficientsGiveEachHoursOwnSolve|AnnualCli\.AClearYearOnTheDaylitRoom|AnnualCli\.AStoppedSolveStillGivesTheYearFromTheLightSoFar")
