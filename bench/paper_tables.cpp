@@ -113,7 +113,7 @@ Run solve(const std::string& sample, rad::Method method, int level, std::size_t 
   // The paper counts a transfer to every element a shot visits, including those behind
   // the sender; receiver culling (on in the product) would drop them from adaptive's
   // count above all and change what is compared. Culled, level 4 gives 13.02 instead of
-  // 14.2 (bench/README.md).
+  // 14.2 (bench/results/bench_paper_tables.md).
   options.cull = false;
   rad::RefineSettings refine;
   refine.method = method;

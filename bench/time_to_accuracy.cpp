@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
   if (reference.values.size() != grid().size()) {
     // Even senders, as the reference always was. Shaped ones move it by 0.07% on
     // average and by up to 1.7% on the ceiling beside the middle of the long walls,
-    // whose light changes fastest there (bench/README.md).
+    // whose light changes fastest there (bench/results/bench_time_to_accuracy.md).
     reference = solve({"reference", 0.5, rad::Method::progressive, 0, 1.0, false, -1, -1, false}, 1e-4, threads);
     std::printf("reference: 0.5 m patches, progressive to 0.01%% unshot: %zu shots, %.1f s, %zu grid points\n",
                 reference.report.iterations, reference.report.seconds, reference.values.size());

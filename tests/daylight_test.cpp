@@ -414,7 +414,7 @@ TEST(Daylight, FacadeOpeningIsRightBesideTheWall) {
 // Under an overhang the floor near the facade sees the sky only past the plate's ends,
 // a sliver of the opening. Its corners were once sampled from whichever corner the model
 // listed first, and in one order no stratum saw the sliver: a floor point took half
-// its light (CIE 171 test 5.13, bench/README.md). Now the same in either order, and
+// its light (CIE 171 test 5.13, bench/results/daylight_portals.md). Now the same in either order, and
 // right.
 TEST(Daylight, SkyPastAnOverhangIsTheSameWhicheverFaceComesFirst) {
   std::vector<double> values[2];

@@ -4,8 +4,9 @@
 // - every key of the scene file (from the readers' own "unknown key ... (known keys:
 //   ...)" errors, so no list here can drift from the code) is on some page;
 // - README.md stays a front page (at most 12,000 bytes) and no page of docs/ grows past
-//   15,000 bytes;
-// - every relative Markdown link in README.md and docs/**/*.md names a file that exists.
+//   15,000 bytes, nor bench/README.md or a page of bench/results/;
+// - every relative Markdown link in README.md, docs/**/*.md, bench/README.md and
+//   bench/results/*.md names a file that exists.
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -43,6 +44,24 @@ std::vector<fs::path> doc_pages() {
     if (e.is_regular_file() && e.path().extension() == ".md") pages.push_back(e.path());
   std::sort(pages.begin(), pages.end());
   pages.insert(pages.begin(), kRoot / "README.md");
+  return pages;
+}
+
+// bench/README.md and every page under bench/results/, in a fixed order.
+std::vector<fs::path> bench_pages() {
+  std::vector<fs::path> pages;
+  for (const auto& e : fs::directory_iterator(kRoot / "bench" / "results"))
+    if (e.is_regular_file() && e.path().extension() == ".md") pages.push_back(e.path());
+  std::sort(pages.begin(), pages.end());
+  pages.insert(pages.begin(), kRoot / "bench" / "README.md");
+  return pages;
+}
+
+// The pages held to the size and link rules: docs' and the benchmarks'.
+std::vector<fs::path> all_pages() {
+  std::vector<fs::path> pages = doc_pages();
+  const std::vector<fs::path> bench = bench_pages();
+  pages.insert(pages.end(), bench.begin(), bench.end());
   return pages;
 }
 
@@ -97,7 +116,7 @@ TEST(Docs, EveryCommandLineOptionIsOnItsCommandsPage) {
 TEST(Docs, PagesStayShort) {
   // The README is the front page; a topic or command page that grows past this is two.
   constexpr std::uintmax_t kReadme = 12000, kPage = 15000;
-  for (const fs::path& page : doc_pages()) {
+  for (const fs::path& page : all_pages()) {
     const std::uintmax_t limit = page.filename() == "README.md" && page.parent_path() == kRoot ? kReadme : kPage;
     EXPECT_LE(fs::file_size(page), limit) << page.string() << " is over " << limit << " bytes";
   }
@@ -108,7 +127,7 @@ TEST(Docs, EveryRelativeLinkPointsAtAFile) {
   const std::regex link(R"(\]\(([^)\s]+)\))");
   const std::regex scheme("^[a-zA-Z][a-zA-Z0-9+.-]*:");
   std::size_t links = 0;
-  for (const fs::path& page : doc_pages()) {
+  for (const fs::path& page : all_pages()) {
     const std::string text = std::regex_replace(read(page), fenced, "");
     for (std::sregex_iterator m(text.begin(), text.end(), link), end; m != end; ++m) {
       const std::string target = (*m)[1];

@@ -127,9 +127,9 @@ double mean_error_against_reference(Solved& s, const std::vector<ReferencePoint>
 // the error measured against the path tracer, less what the tracer's own noise adds
 // (about 0.08% here): the grid's mean relative error, and what the estimate estimates,
 // the area-weighted error over the whole room (walls too). That one is 0.59%, 0.21%
-// and 0.10% against estimates of 2.9%, 0.97% and 0.29%: bench/README.md says why.
+// and 0.10% against estimates of 2.9%, 0.97% and 0.29%: bench/results/error_estimate.md says why.
 // The normal quality (the default) is within the goal of 0.5% on average (the 2.6% at single points, the ceiling's
-// corners, is in bench/README.md).
+// corners, is in bench/results/bench_defaults.md).
 TEST(ErrorEstimate, BoundsTheMeasuredErrorOnThe1990RoomForEveryQuality) {
   const std::vector<ReferencePoint> reference = globillum_reference();
   ASSERT_EQ(reference.size(), 476u);

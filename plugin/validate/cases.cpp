@@ -425,7 +425,7 @@ Case daylight(Opening kind, int sky, double ground = 0) {
   Obj obj("room.mtl");
   obj.use("black");
   // The room first, then the masks (the order the mesh's cleanup meets them in decides
-  // how an overhang's edge joins the wall; see bench/README.md).
+  // how an overhang's edge joins the wall; see bench/results/daylight_portals.md).
   const bool roof = kind == Opening::roof || kind == Opening::roof_glazed;
   if (roof)
     room(obj, 4, 4, 3, {1.5, 1.5, 2.5, 2.5});

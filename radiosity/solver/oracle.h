@@ -37,7 +37,7 @@ struct OracleThresholds {
   // convex function overshoots) and add up: on the paper's 128-emitter room the
   // paper's oracle ends 3.3x further from the reference than adaptive subdivision.
   // Bounding each transfer's error by a fraction of that transfer bounds the sum by
-  // the same fraction of B, however many senders there are (bench/README.md).
+  // the same fraction of B, however many senders there are (bench/results/bench_paper_tables.md).
   enum class Variant { paper, pushdown } variant = Variant::pushdown;
   // Paper: Figure 6's three thresholds (the paper uses one value for all).
   double cumulated_gradient = 0.25;
@@ -47,7 +47,7 @@ struct OracleThresholds {
   // allowed (a fraction of the transfer), and the floor: errors are measured against
   // max(the transfer's peak, pushdown_floor * max B), so a transfer that is a
   // negligible share of the element's light does not refine for its own sake.
-  // Defaults from the sweep in bench/README.md.
+  // Defaults from the sweep in bench/results/bench_paper_tables.md.
   double pushdown_cumulated_gradient = 0.05;
   double pushdown = 0.04;
   double pushdown_floor = 0.02;

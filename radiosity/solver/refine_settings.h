@@ -36,7 +36,7 @@ struct RefineSettings {
   // (three more closed forms where elements exist below), instead of linearly from the
   // corners as the paper does. Linear push-down of a transfer that bends (near its
   // sender) overshoots at every vertex below, always on the same side, and many such
-  // transfers add up: in a furnace the worst vertex was 17% off (bench/README.md).
+  // transfers add up: in a furnace the worst vertex was 17% off (bench/results/bench_paper_tables.md).
   bool quadratic_pushdown = true;
   // Dynamic: a new vertex starts from its parent's values (a line across the element
   // it was split from) plus, for every patch within one radius of that element that
@@ -71,7 +71,7 @@ struct RefineSettings {
   // such as the 1990 room's 0.5 m source) refines as a luminaire's shot does, with
   // luminaire_pushdown and primary_levels: its pool of light bends on the scale of its
   // height, not of the patches. On the 1990 room at the defaults the floor below the
-  // source was 1.6% dark between exact vertices 0.6 m apart (bench/README.md). Later
+  // source was 1.6% dark between exact vertices 0.6 m apart (bench/results/small_area_lights.md). Later
   // shots of the same patch (light it reflects) are a patch's.
   bool sharp_primary_patches = true;
   // Levels beyond max_level for that shot: fewer than a luminaire's, since an area

@@ -22,7 +22,7 @@ const char* quality_name(Quality quality);
 // What a quality level asks for: draft 3%, normal 1%, high 0.3% estimated error, each
 // with the discretisation that reaches it. The estimate runs at 3-5 times the error it
 // estimates on the 1990 room and about the error on the obstructed room, mostly through
-// its unshot part (bench/README.md, "What the error estimate estimates"): the targets
+// its unshot part (bench/results/error_estimate.md): the targets
 // are set for that estimate and must move if it does.
 struct QualityPreset {
   // Stop when the estimated mean relative error of the written values (Solver::

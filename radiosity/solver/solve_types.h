@@ -26,7 +26,7 @@ struct SolveOptions {
   // IFC house two first rays instead of four cut the solve by 14% (129 M rays to 72 M),
   // and its values moved by 0.76% rms, as much as changing the seed moves them (0.73%
   // with four, 0.78% with two); the 1990 rooms, open and obstructed, and the furnace
-  // gave the same errors against their references (bench/README.md).
+  // gave the same errors against their references (bench/results/bench_house.md).
   int min_rays = 2;
   int max_rays = 16;               // added when the first pass finds the sender partly hidden
   // The same in the first shot of a primary emitting patch (a small area light; see
@@ -76,7 +76,7 @@ struct SolveOptions {
   // received is not even across it. Each shot gives the mean a shape from what a
   // quarter grid of points on the sender gained since it last shot, with the same
   // power; receivers near the sender see it (on 2 m patches of the 1990 room the error
-  // the senders leave falls from 0.80% to 0.23%: bench/README.md). The shape is
+  // the senders leave falls from 0.80% to 0.23%: bench/results/bench_time_to_accuracy.md). The shape is
   // measured on luminance and given to all three channels. False: every patch shoots
   // evenly, as Cohen et al. 1988 and the paper do.
   bool shaped_senders = true;
@@ -89,7 +89,7 @@ struct SolveOptions {
   // them most (an edge vertex takes half its light from the patches along the other
   // side of the edge). The ambient term, one area-weighted mean, cannot give that back:
   // a 1 x 1 x 3 furnace at the defaults kept an edge vertex 5.7% dark, 1.2% with this
-  // rule in as many shots, 0.8% with near_unshot too (bench/README.md). Without the cap
+  // rule in as many shots, 0.8% with near_unshot too (bench/results/concave_edges.md). Without the cap
   // at twice, the much smaller patches of imprinted lines shot far more often: the IFC
   // house took 14% more shots (25% with detail counted too); with it, as many (4,338).
   // False: power alone.

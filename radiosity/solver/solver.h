@@ -86,7 +86,7 @@ class Solver {
   //     is missing (on the 1990 room at 2% unshot: 3.2% estimated, 3.3% measured);
   //     with it (SolveOptions::ambient_display), a quarter of it is counted: the term
   //     is right on average and wrong in its distribution, and on the 1990 room it
-  //     removes 80-90% of the unshot light's error (bench/README.md).
+  //     removes 80-90% of the unshot light's error (bench/results/bench_time_to_accuracy.md).
   //   discretisation: at every leaf below a patch, the hierarchical surplus at the
   //     corner its parent's split made: the leaf's value there minus the parent's
   //     linear interpolation, halved: bisection halves the interpolation error (it
