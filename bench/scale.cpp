@@ -1,6 +1,6 @@
 // Scale: a big model (the generated building floor, samples/make_building.py) loaded
-// the way `dynrad solve` loads it (cleanup, flat regions simplified, default patches),
-// then
+// and patched by the pipeline `dynrad solve` calls (radiosity/pipeline/pipeline.h:
+// cleanup, flat regions simplified, the patch size chosen from the model), then
 // 1. thread scaling: the same number of dynamic shots with 1 thread and with 2 (or
 //    more), fresh solvers in one process, each repeated; medians and their ratio;
 // 2. one solve to the target unshot fraction with all threads: time, shots, elements,
@@ -11,9 +11,7 @@
 //   e.g. python3 samples/make_building.py /tmp/b100k.obj --cell 0.25
 //        build/bench/bench_scale /tmp/b100k.obj
 #include "bench/median.h"
-#include "mesh/load.h"
-#include "mesh/core/refinement.h"
-#include "radiosity/solver/solver.h"
+#include "radiosity/pipeline/pipeline.h"
 
 #include <tbb/info.h>
 
@@ -32,33 +30,20 @@ using Clock = std::chrono::steady_clock;
 
 using bench::median;
 
-struct Prepared {
-  LoadedScene loaded;
-  std::unique_ptr<ElementHierarchy> hierarchy;
-  std::size_t patches = 0;
-};
-
-Prepared prepare(const std::string& path) {
-  SimplifyOptions simplify;
-  simplify.enabled = true;
-  Prepared p{load_scene(path, {}, simplify), nullptr, 0};
-  const double patch_size = default_patch_size(*p.loaded.mesh);
-  p.patches = make_patches(*p.loaded.mesh, patch_size).patches;
-  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
-  p.hierarchy = std::make_unique<ElementHierarchy>(*p.loaded.mesh, refinement);
-  return p;
+// `dynrad solve`'s request, its stop rule replaced by `shots` and `converge`.
+rad::SceneRequest request(const std::string& path, int threads, std::size_t shots, double converge) {
+  rad::SceneRequest r;
+  r.path = path;
+  r.simplify.enabled = true;
+  r.settings.converge = converge;
+  r.solve.threads = threads;
+  r.solve.max_iterations = shots;
+  return r;
 }
 
 rad::SolveReport solve(const std::string& path, int threads, std::size_t shots, double converge) {
-  Prepared p = prepare(path);
-  rad::SolveOptions options;
-  options.threads = threads;
-  options.max_iterations = shots;
-  options.converge = converge;
-  rad::RefineSettings refine;
-  refine.method = rad::Method::dynamic;
-  rad::Solver solver(*p.loaded.mesh, *p.hierarchy, options, refine);
-  return solver.run();
+  rad::PreparedScene p = rad::prepare_scene(request(path, threads, shots, converge));
+  return rad::solve_scene(p).report;
 }
 
 }  // namespace
@@ -77,9 +62,9 @@ int main(int argc, char** argv) {
 
   const auto load_start = Clock::now();
   {
-    Prepared p = prepare(path);
+    const rad::PreparedScene p = rad::prepare_scene(request(path, 0, 0, converge));
     std::printf("model: %s: %zu triangles after cleanup, %zu after simplification, %zu patches (load %.1f s)\n",
-                path.c_str(), p.loaded.simplify.faces_before, p.loaded.simplify.faces_after, p.patches,
+                path.c_str(), p.scene.simplify.faces_before, p.scene.simplify.faces_after, p.hierarchy->patch_count(),
                 std::chrono::duration<double>(Clock::now() - load_start).count());
   }
 

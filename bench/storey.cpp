@@ -1,7 +1,8 @@
 // bench_storey: the generated storey (samples/storey.obj, built as an IFC export gives a
 // building: slabs under the walls, walls through slabs, furniture standing on floors),
-// lit the way `dynrad solve --method dynamic` lights it (cleanup, flat regions
-// simplified, default patches and oracle, to 1% unshot), with and without imprinting.
+// lit by the pipeline `dynrad solve --converge 0.01` calls (radiosity/pipeline/
+// pipeline.h: cleanup, flat regions simplified, the patch size and oracle chosen from
+// the model, to 1% unshot), with and without imprinting.
 //
 // Figures per configuration (each solve in a child process, so that its peak resident
 // memory is its own):
@@ -18,9 +19,7 @@
 //
 // Usage: bench_storey [repeats (3)] [model (samples/storey.obj)] [layout (…_layout.json)]
 #include "bench/median.h"
-#include "mesh/load.h"
-#include "mesh/core/refinement.h"
-#include "radiosity/solver/solver.h"
+#include "radiosity/pipeline/pipeline.h"
 #include "radiosity/transfer/visibility.h"
 
 #include <sys/wait.h>
@@ -179,26 +178,21 @@ struct Figures {
 };
 
 Figures solve_once(const std::string& model, const Layout& layout, bool imprint) {
-  CleanupOptions cleanup;
-  cleanup.imprint = imprint;
-  SimplifyOptions simplify;
-  simplify.enabled = true;
-  LoadedScene scene = load_scene(model, cleanup, simplify);
-  const double patch_size = default_patch_size(*scene.mesh);
-  make_patches(*scene.mesh, patch_size);
-  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
-  ElementHierarchy hierarchy(*scene.mesh, refinement);
-  rad::RefineSettings refine;
-  refine.method = rad::Method::dynamic;
-  rad::Solver solver(*scene.mesh, hierarchy, rad::SolveOptions{}, refine);
-  const rad::SolveReport report = solver.run();
+  rad::SceneRequest request;
+  request.path = model;
+  request.cleanup.imprint = imprint;
+  request.simplify.enabled = true;
+  request.settings.converge = 0.01;
+  rad::PreparedScene prepared = rad::prepare_scene(request);
+  const rad::SolvedScene solved = rad::solve_scene(prepared);
+  const rad::SolveReport& report = solved.report;
   Figures f;
   f.seconds = report.seconds;
   f.elements = report.elements;
   f.patches = report.patches;
   f.shots = report.iterations;
   f.peak_mib = static_cast<double>(rad::peak_resident_memory()) / (1024 * 1024);
-  const Fringe fr = fringe(*scene.mesh, solver.output(), layout);
+  const Fringe fr = fringe(*prepared.scene.mesh, solved.output, layout);
   f.fringe = fr.fit;
   f.metres = fr.metres;
   return f;

@@ -4,6 +4,7 @@
 #include "mesh/load.h"
 #include "mesh/core/refinement.h"
 #include "radiosity/analysis/probe.h"
+#include "radiosity/pipeline/pipeline.h"
 #include "radiosity/solver/solver.h"
 #include "scene_builder.h"
 #include "test_support.h"
@@ -260,27 +261,23 @@ namespace {
 // The generated storey (samples/make_storey.py) lights: every room's floor is lit by its
 // lamp, light leaves through the windows, the balance holds.
 TEST(Storey, EveryRoomIsLitAndTheBalanceHolds) {
-  SimplifyOptions simplify;
-  simplify.enabled = true;
-  LoadedScene scene = load_scene(test::sample("storey.obj"), {}, simplify);
-  const double patch_size = default_patch_size(*scene.mesh);
-  make_patches(*scene.mesh, patch_size);
-  ElementHierarchy hierarchy(*scene.mesh);
-  RefineSettings refine;
-  refine.method = Method::dynamic;
-  SolveOptions options;
-  options.converge = 0.05;
-  Solver solver(*scene.mesh, hierarchy, options, refine);
-  const SolveReport report = solver.run();
-  const EnergyBalance& e = report.energy;
+  // By the pipeline `dynrad solve --converge 0.05` calls.
+  rad::SceneRequest request;
+  request.path = test::sample("storey.obj");
+  request.simplify.enabled = true;
+  request.settings.converge = 0.05;
+  rad::PreparedScene prepared = rad::prepare_scene(request);
+  const rad::SolvedScene solved = rad::solve_scene(prepared);
+  const SceneMesh& mesh = *prepared.scene.mesh;
+  const EnergyBalance& e = solved.report.energy;
   EXPECT_NEAR(e.absorbed.r + e.escaped.r + e.unshot.r, e.emitted.r, 1e-9 * e.emitted.r);
   EXPECT_GT(e.escaped.r, 0.0);
-  const Solver::Output out = solver.output();
+  const Solver::Output& out = solved.output;
   for (const Rgb& b : out.radiosity) ASSERT_TRUE(b.is_finite());
   // Room centres (under the lamps) and a point by a wall of each room, on the floor.
   for (const auto& p : std::vector<std::array<double, 2>>{
            {3.3, 2.5}, {9.2, 2.5}, {3.0, 6.9}, {9.0, 6.9}, {0.25, 2.5}, {11.75, 1.0}, {0.25, 6.0}, {11.75, 6.0}}) {
-    const auto b = probe(*scene.mesh, out.split, out.radiosity, {p[0], p[1], 0}, {0, 0, 1});
+    const auto b = probe(mesh, out.split, out.radiosity, {p[0], p[1], 0}, {0, 0, 1});
     ASSERT_TRUE(b) << "no floor at (" << p[0] << ", " << p[1] << ")";
     EXPECT_GT(b->r, 0.0) << "(" << p[0] << ", " << p[1] << ")";
   }

@@ -3,9 +3,7 @@
 // vertices has extrema only where the light itself peaks, and there a vertex passes its
 // neighbours by a hair (the second difference over one element); a streak or a blotch is
 // a vertex well outside the range of the ring of vertices around it.
-#include "mesh/load.h"
-#include "mesh/core/refinement.h"
-#include "radiosity/solver/settings.h"
+#include "radiosity/pipeline/pipeline.h"
 #include "radiosity/solver/solver.h"
 #include "test_support.h"
 
@@ -83,24 +81,17 @@ Outliers ring_outliers(const SceneMesh& scene, const VertexSplit& split, const s
   return out;
 }
 
-// The Cornell demo solved with the given seed (the rays' only source of chance).
+// The Cornell demo solved with the given seed (the rays' only source of chance), by the
+// pipeline `dynrad solve --ambient` calls.
 Outliers cornell_outliers(std::uint64_t seed) {
-  SimplifyOptions simplify;
-  simplify.enabled = true;
-  LoadedScene scene = load_scene(test::sample("cornell_box.obj"), {}, simplify);
-  rad::RefineSettings refine;
-  refine.method = rad::Method::dynamic;
-  rad::SolveOptions options;
-  options.ambient_display = true;
-  options.seed = seed;
-  const rad::AppliedSettings applied = rad::apply_settings(*scene.mesh, {}, refine, options);
-  make_patches(*scene.mesh, applied.patch_size);
-  const RefinementOptions refinement = refinement_for_patch_size(applied.patch_size);
-  ElementHierarchy hierarchy(*scene.mesh, refinement);
-  rad::Solver solver(*scene.mesh, hierarchy, options, refine);
-  solver.run();
-  const rad::Solver::Output out = solver.output();
-  return ring_outliers(*scene.mesh, out.split, out.radiosity);
+  rad::SceneRequest request;
+  request.path = test::sample("cornell_box.obj");
+  request.simplify.enabled = true;
+  request.solve.ambient_display = true;
+  request.solve.seed = seed;
+  rad::PreparedScene prepared = rad::prepare_scene(request);
+  const rad::SolvedScene solved = rad::solve_scene(prepared);
+  return ring_outliers(*prepared.scene.mesh, solved.output.split, solved.output.radiosity);
 }
 
 // At every seed, not only the default one: a lone vertex decided by two rays that

@@ -5,6 +5,7 @@
 // patches in a model of any size or unit: a house's rooms, not its outline.
 #pragma once
 
+#include "mesh/core/default_seed.h"
 #include "mesh/core/scene_mesh.h"
 
 #include <cstdint>
@@ -13,7 +14,7 @@ namespace dynrad {
 
 struct MeanFreePathOptions {
   int rays = 4096;          // from area-weighted points on the fronts of all faces
-  std::uint64_t seed = 1;   // the same model gives the same figure
+  std::uint64_t seed = default_seed();  // the same model gives the same figure
 };
 
 struct MeanFreePath {

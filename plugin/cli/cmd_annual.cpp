@@ -15,8 +15,6 @@
 //                                over 1000 lx (the basis of ASE)
 #include "mesh/io/atomic_file.h"
 #include "mesh/core/error.h"
-#include "mesh/load.h"
-#include "mesh/core/refinement.h"
 #include "plugin/cli/annual_meshes.h"
 #include "plugin/cli/commands.h"
 #include "plugin/report/grid_picture.h"
@@ -25,11 +23,10 @@
 #include "plugin/report/png.h"
 #include "plugin/cli/progress.h"
 #include "radiosity/climate/annual.h"
+#include "radiosity/pipeline/pipeline.h"
 #include "radiosity/sources/daylight.h"
 #include "radiosity/analysis/grid_scene.h"
 #include "radiosity/analysis/lit_scene.h"
-#include "radiosity/solver/settings.h"
-#include "radiosity/solver/solver.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -119,30 +116,25 @@ int run_annual(const AnnualCliOptions& options) {
     for (const char* suffix : {"_hourly.npy", "_points.csv", "_DA300.png", "_cDA300.png", "_UDI.png", "_ASE.png"})
       check_output_writable(prefix + "_" + g.name + suffix);
 
-  LoadedScene scene = load_scene(options.load.input, options.load.cleanup(), SimplifyOptions{}, options.load.read());
-  for (const auto& w : scene.warnings) spdlog::warn("{}", w);
-  if (scene.glazing.empty() && scene.openings.empty())
-    throw InputError(options.load.input, 0,
-                     "the model has no windows: no glazing (a material with a transmittance) and no opening, so no "
-                     "daylight comes in. Give the windows' glass a transmittance (Tf or d in the .mtl file).");
-  SceneMesh& mesh = *scene.mesh;
-  // Grey materials of the same luminance reflectance; no emission (daylight alone).
-  std::size_t coloured = 0;
-  for (std::size_t m = 0; m < mesh.materials().size(); ++m) {
-    Material grey = mesh.materials()[m];
-    coloured += grey.reflectance.max_channel() - grey.reflectance.min_channel() > 1e-9;
-    grey.reflectance = Rgb(grey.reflectance.luminance());
-    grey.emission = Rgb();
-    mesh.set_material(m, grey);
-  }
-  if (coloured > 0)
-    spdlog::info("annual daylight: {} coloured materials taken as grey of the same luminance reflectance", coloured);
-
   rad::AnnualOptions annual;
   scene_sky_settings(options.load.input, annual);
   const rad::CoefficientOptions& co = annual.coefficients;
   const rad::SkyPatches fine(co.fine_subdivision, annual.up, annual.north);
   const rad::SkyPatches indirect(co.indirect_subdivision, annual.up, annual.north);
+
+  // Load, repair, the steering sky, settings, patches: the pipeline every host calls,
+  // asked for annual daylight's solve (radiosity/pipeline/pipeline.h).
+  rad::SceneRequest request;
+  request.path = options.load.input;
+  request.cleanup = options.load.cleanup();
+  request.simplify.enabled = options.load.simplify;
+  request.read = options.load.read();
+  request.coefficients = rad::CoefficientRequest{annual.up, co, &indirect, nullptr};
+  rad::PreparedScene prepared = rad::prepare_scene(request);
+  SceneMesh& mesh = *prepared.scene.mesh;
+  const rad::Luminaire& steering = prepared.luminaires.front();
+  const rad::Glazing* glazing = prepared.glazing.get();
+
   spdlog::info("{}: {}, {}, {} (latitude {:.3f}, longitude {:.3f}, UTC{:+g}), {} hours", weather.path,
                weather.site.city, weather.site.region, weather.site.country, weather.site.latitude,
                weather.site.longitude, weather.site.timezone, weather.hours.size());
@@ -159,38 +151,27 @@ int run_annual(const AnnualCliOptions& options) {
                "(MF:{}), interreflection on {} (MF:{})",
                since(), lit_rows, year.suns.size(), co.sun_spacing, fine.size(), co.fine_subdivision, indirect.size(),
                co.indirect_subdivision);
+  prepared.request.coefficients->suns = &year.suns;
 
-  // The solve: the steering sky, carrying the channels.
-  const auto glazing = std::make_shared<const rad::Glazing>(scene.glazing, scene.openings);
-  const rad::Luminaire steering = rad::steering_sky(glazing, annual.up, co.steering_ground);
-  rad::RefineSettings refine;
-  rad::SolveOptions solve;
-  rad::SettingsRequest request;
-  request.patch_scale = co.patch_factor;
-  const rad::AppliedSettings applied = rad::apply_settings(mesh, request, refine, solve);
-  solve.emission_scale = rad::kLumensPerWatt;
-  solve.min_reflectance = 1e-4;
-  make_patches(mesh, applied.patch_size);
-  ElementHierarchy hierarchy(mesh, refinement_for_patch_size(applied.patch_size));
-  // Progress as solve shows it; a first SIGINT or SIGTERM stops the solve at the next
-  // shot, and the year is then computed from the light shot so far (exit code 3).
-  Progress progress(solve.error_target > 0 ? solve.error_target : solve.converge);
-  solve.should_stop = [] { return g_stop_requested.load(); };
-  rad::Solver* running = nullptr;
-  solve.on_shot = [&](std::size_t shot, double unshot) {
-    progress.update(shot, unshot, -1, running ? running->report().elements : 0);
+  // The solve, with progress as solve shows it; a first SIGINT or SIGTERM stops the solve
+  // at the next shot, and the year is then computed from the light shot so far (exit
+  // code 3).
+  Progress progress(prepared.solve.error_target > 0 ? prepared.solve.error_target : prepared.solve.converge);
+  prepared.solve.should_stop = [] { return g_stop_requested.load(); };
+  prepared.request.on_shot = [&](const rad::Solver& running, std::size_t shot, double unshot) {
+    progress.update(shot, unshot, -1, running.report().elements);
   };
-  solve.on_busy = [&](std::size_t points, double seconds) { progress.busy(points, seconds, g_stop_requested.load()); };
+  prepared.solve.on_busy = [&](std::size_t points, double seconds) {
+    progress.busy(points, seconds, g_stop_requested.load());
+  };
   g_stop_requested = false;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  rad::Solver solver(mesh, hierarchy, solve, refine, {steering});
-  running = &solver;
-  const rad::Visibility visibility(mesh);
-  solver.carry_coefficients(rad::coefficient_channels(visibility, steering, indirect, year.suns, co));
-  spdlog::info("solve: {} patches (patch size {:.3g}), {} channels", hierarchy.patch_count(), applied.patch_size,
-               solver.coefficient_count());
-  const rad::SolveReport report = solver.run();
+  spdlog::info("solve: {} patches (patch size {:.3g}), {} channels", prepared.hierarchy->patch_count(),
+               prepared.applied.patch_size, indirect.size() + 1 + year.suns.size());
+  const rad::SolvedScene solved = rad::solve_scene(prepared, true);
+  const rad::Solver& solver = *solved.solver;
+  const rad::SolveReport& report = solved.report;
   progress.finish();
   const bool interrupted = g_stop_requested.load();
   if (interrupted)
@@ -199,9 +180,8 @@ int run_annual(const AnnualCliOptions& options) {
                  100 * report.unshot_fraction);
   spdlog::info("solved in {:.1f} s: {} shots, {:.2g}% unshot", report.seconds, report.iterations,
                100 * report.unshot_fraction);
-  const rad::Solver::Output result = solver.output();
-  const rad::LitScene lit =
-      rad::lit_scene(mesh, result.split, result.radiosity, {steering}, solve.emission_scale, true);
+  const rad::Solver::Output& result = solved.output;
+  const rad::LitScene& lit = *solved.lit;
 
   const rad::AnalysisHours occupied = rad::occupied_hours(year.rows, first_hour, last_hour);
   const rad::AnalysisHours daylight_hours = rad::en17037_daylight_hours(year.diffuse_horizontal);
@@ -230,7 +210,7 @@ int run_annual(const AnnualCliOptions& options) {
        fmt::format("direct sky on Reinhart MF:{} ({} patches), interreflection on MF:{} ({}), {} sun positions every "
                    "{} degrees, one solve of {} patches",
                    co.fine_subdivision, fine.size(), co.indirect_subdivision, indirect.size(), year.suns.size(),
-                   co.sun_spacing, hierarchy.patch_count())},
+                   co.sun_spacing, prepared.hierarchy->patch_count())},
       {"blinds",
        options.blinds < 0
            ? std::string("none (LM-83's operable-blinds rule is not applied; --blinds T applies it)")
@@ -256,7 +236,7 @@ int run_annual(const AnnualCliOptions& options) {
     });
     const double coefficient_seconds = since();
     rad::AnnualGridHours hours =
-        rad::grid_year(coefficients, points, normal, *lit.visibility, glazing.get(), year);
+        rad::grid_year(coefficients, points, normal, *lit.visibility, glazing, year);
     spdlog::info("grid {}: coefficients of {} points in {:.1f} s, {} hours in {:.1f} s", spec.name, points.size(),
                  coefficient_seconds, hours.total.hours, since());
     // The metrics over the points that are not inside a solid.
@@ -361,12 +341,12 @@ int run_annual(const AnnualCliOptions& options) {
     vertices = std::make_unique<rad::VertexCoefficients>(rad::vertex_coefficients(
         mesh, solver, result, indirect.size() + 1, steering.daylight->sky.ground_luminance));
     annual_mesh_outputs(prefix, mesh, result.split, *vertices, year, mesh_hours, options.vertex_coefficients,
-                        *lit.visibility, glazing.get(), indirect, writes, out);
+                        *lit.visibility, glazing, indirect, writes, out);
     spdlog::info("the model: coefficients of {} vertices in {:.1f} s", vertices->size(), since());
   }
   for (const auto& write : writes) write();
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  out["solve"] = {{"patches", hierarchy.patch_count()},
+  out["solve"] = {{"patches", prepared.hierarchy->patch_count()},
                   {"channels", solver.coefficient_count()},
                   {"shots", report.iterations},
                   {"unshot_percent", 100 * report.unshot_fraction},
@@ -393,6 +373,7 @@ Command add_annual_command(CLI::App& app) {
       "annual", "A year of daylight on the scene's grids from an EnergyPlus weather file: sDA, ASE, UDI, DA and "
                 "EN 17037's daylight provision, hourly illuminance per point, plans");
   add_load_options(*command, options->load);
+  add_simplify_flag(*command, options->load);
   command->add_option("--weather", options->weather, "EnergyPlus weather file (.epw) of the site")->required();
   command->add_option("-o,--output", options->output,
                       "Prefix of the results: PREFIX_annual.json, PREFIX_GRID_hourly.npy, PREFIX_GRID_points.csv and "

@@ -29,7 +29,7 @@ struct Options {
   std::optional<double> patch_size, converge, time_limit;
   std::optional<int> max_level, threads;
   std::optional<std::size_t> iterations;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = default_seed();
   bool imprint = true, simplify = true;
 };
 

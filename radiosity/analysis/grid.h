@@ -20,6 +20,7 @@
 // value, counted.
 #pragma once
 
+#include "mesh/core/default_seed.h"
 #include "radiosity/analysis/lit_scene.h"
 
 #include <array>
@@ -109,7 +110,7 @@ struct GatherOptions {
   // part in a room of even walls (tests/grid_test.cpp measures it).
   int side = 48;
   int emitter_rays = 16;   // per emitting triangle and point
-  std::uint64_t seed = 1;
+  std::uint64_t seed = default_seed();
 };
 
 struct GridPointResult {

@@ -13,6 +13,7 @@
 // The scene file's top-level "routes" and "open_areas" (see emergency_scene.cpp).
 #pragma once
 
+#include "mesh/core/default_seed.h"
 #include "radiosity/design/check.h"
 #include "radiosity/analysis/lit_scene.h"
 
@@ -51,6 +52,6 @@ std::vector<EmergencyArea> read_emergency_areas(const std::string& scene_path);
 
 // `scene`'s luminaires with emergency > 0 (Luminaire::emergency), at that share of their
 // flux. Seeded: the same answer for any thread count.
-EmergencyResult check_emergency(const LitScene& scene, const EmergencyArea& area, std::uint64_t seed = 1);
+EmergencyResult check_emergency(const LitScene& scene, const EmergencyArea& area, std::uint64_t seed = default_seed());
 
 }  // namespace dynrad::rad

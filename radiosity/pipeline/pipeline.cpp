@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <stdexcept>
+
 namespace dynrad::rad {
 
 std::vector<std::string> scene_file_sections() {
@@ -21,6 +23,20 @@ std::vector<std::string> scene_file_sections() {
 }
 
 namespace {
+
+// Every material grey of its luminance reflectance, emitting `emission_colour` times its
+// emission's luminance (nothing when that is black); returns how many had a colour.
+std::size_t grey_materials(SceneMesh& mesh, const std::vector<Material>& materials, const Rgb& emission_colour) {
+  std::size_t coloured = 0;
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    Material grey_material = materials[m];
+    coloured += grey_material.reflectance.max_channel() - grey_material.reflectance.min_channel() > 1e-9;
+    grey_material.reflectance = grey(grey_material.reflectance);
+    grey_material.emission = emission_colour * grey_material.emission.luminance();
+    mesh.set_material(m, grey_material);
+  }
+  return coloured;
+}
 
 // Light scenes: each control group's light in a channel of its own (design/
 // light_scenes.h); materials grey for the solve (PreparedScene::materials keeps them).
@@ -32,14 +48,7 @@ void plan_light_scenes(PreparedScene& p) {
   p.channels = plan_channels(p.request.path, p.luminaires, mesh.emitting_area() > 0);
   assign_channels(p.luminaires, p.channels);
   const int own = p.channels.channel("");
-  std::size_t coloured = 0;
-  for (std::size_t m = 0; m < p.materials.size(); ++m) {
-    Material grey_material = p.materials[m];
-    coloured += grey_material.reflectance.max_channel() - grey_material.reflectance.min_channel() > 1e-9;
-    grey_material.reflectance = grey(grey_material.reflectance);
-    grey_material.emission = own >= 0 ? channel_colour(own) * grey_material.emission.luminance() : Rgb();
-    mesh.set_material(m, grey_material);
-  }
+  const std::size_t coloured = grey_materials(mesh, p.materials, own >= 0 ? channel_colour(own) : Rgb());
   if (coloured > 0)
     spdlog::warn("light scenes: {} coloured materials are taken as grey of the same luminance reflectance (each "
                  "group's light travels in a colour channel of its own); the lit mesh is grey.",
@@ -48,6 +57,64 @@ void plan_light_scenes(PreparedScene& p) {
   for (const std::string& g : p.channels.channels) groups += (groups.empty() ? "" : ", ") + (g.empty() ? "(no group)" : g);
   spdlog::info("light scenes: {} scenes of {} channels ({}), from one solve", p.light_scenes.size(),
                p.channels.channels.size(), groups);
+}
+
+// The scene's own light: daylight (its "sky": the sun, then the sky) shoots first, then
+// luminaires; faces' emission; light scenes' channels.
+void scene_light(PreparedScene& p) {
+  SceneMesh& mesh = *p.scene.mesh;
+  p.luminaires = read_daylight(p.request.path, p.scene.glazing, p.scene.openings);
+  p.daylight = !p.luminaires.empty();
+  for (Luminaire& l : read_luminaires(p.request.path)) p.luminaires.push_back(std::move(l));
+  if (!p.scene.glazing.empty())
+    spdlog::info("{} glazing triangles (materials with a transmittance): windows, not lit{}", p.scene.glazing.size(),
+                 p.daylight ? "; the sky and the sun come through them"
+                            : "; without a \"sky\" nothing comes through them");
+  if (!(mesh.emitting_area() > 0) && p.luminaires.empty())
+    throw NoLightError(p.request.path, 0,
+                     "no face emits light and there is no luminaire and no sky, so everything would be black. "
+                     "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
+                     "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "
+                     "materials.");
+  p.photometric = !p.luminaires.empty();
+  if (p.request.units == Units::photometric) {
+    p.photometric = true;
+  } else if (p.request.units == Units::radiometric) {
+    if (!p.luminaires.empty())
+      throw InputError("--units", 0,
+                       "radiometric units cannot be used with luminaires or daylight, which are given in candela, "
+                       "lumens and lux. Leave --units out (photometric) or remove them.");
+    p.photometric = false;
+  }
+  if (p.photometric) {
+    p.solve.emission_scale = kLumensPerWatt;
+    p.solve.min_reflectance = 1e-4;
+  }
+  for (const Luminaire& l : p.luminaires) spdlog::info("luminaire {}", l.describe());
+  plan_light_scenes(p);
+  if (!p.luminaires.empty()) {
+    const Visibility visibility(mesh);
+    for (const std::string& w : luminaire_warnings(visibility, p.luminaires)) spdlog::warn("{}", w);
+  }
+}
+
+// Annual daylight's: the steering sky alone, carrying channels (CoefficientRequest).
+void steering_sky_light(PreparedScene& p) {
+  const CoefficientRequest& c = *p.request.coefficients;
+  if (p.scene.glazing.empty() && p.scene.openings.empty())
+    throw NoLightError(p.request.path, 0,
+                       "the model has no windows: no glazing (a material with a transmittance) and no opening, so "
+                       "no daylight comes in. Give the windows' glass a transmittance (Tf or d in the .mtl file).");
+  SceneMesh& mesh = *p.scene.mesh;
+  p.materials = mesh.materials();
+  const std::size_t coloured = grey_materials(mesh, p.materials, Rgb());  // daylight alone
+  if (coloured > 0)
+    spdlog::info("annual daylight: {} coloured materials taken as grey of the same luminance reflectance", coloured);
+  p.glazing = std::make_shared<const Glazing>(p.scene.glazing, p.scene.openings);
+  p.luminaires = {steering_sky(p.glazing, c.up, c.options.steering_ground)};
+  p.daylight = p.photometric = true;
+  p.solve.emission_scale = kLumensPerWatt;
+  p.solve.min_reflectance = 1e-4;
 }
 
 }  // namespace
@@ -67,6 +134,7 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
   p.request = request;
   p.solve = request.solve;
   p.refine = request.refine;
+  if (request.coefficients) p.refine.method = Method::progressive;  // as measured (CoefficientRequest)
   p.grids = read_grids(request.path);
 
   // 1. Read and repair.
@@ -83,50 +151,22 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
                  p.scene.simplify.faces_after, p.scene.simplify.seconds);
   SceneMesh& mesh = *p.scene.mesh;
 
-  // 2. Light sources: daylight (the scene's "sky": the sun, then the sky) shoots first,
-  // then luminaires.
-  p.luminaires = read_daylight(request.path, p.scene.glazing, p.scene.openings);
-  p.daylight = !p.luminaires.empty();
-  for (Luminaire& l : read_luminaires(request.path)) p.luminaires.push_back(std::move(l));
-  if (!p.scene.glazing.empty())
-    spdlog::info("{} glazing triangles (materials with a transmittance): windows, not lit{}", p.scene.glazing.size(),
-                 p.daylight ? "; the sky and the sun come through them"
-                            : "; without a \"sky\" nothing comes through them");
-  if (!(mesh.emitting_area() > 0) && p.luminaires.empty())
-    throw NoLightError(request.path, 0,
-                     "no face emits light and there is no luminaire and no sky, so everything would be black. "
-                     "Place luminaires (\"luminaires\" in a scene file), bring daylight in (\"sky\" in a scene "
-                     "file), or give a material an emission: Ke in the .mtl file, or \"emission\" in a scene file's "
-                     "materials.");
-  p.photometric = !p.luminaires.empty();
-  if (request.units == Units::photometric) {
-    p.photometric = true;
-  } else if (request.units == Units::radiometric) {
-    if (!p.luminaires.empty())
-      throw InputError("--units", 0,
-                       "radiometric units cannot be used with luminaires or daylight, which are given in candela, "
-                       "lumens and lux. Leave --units out (photometric) or remove them.");
-    p.photometric = false;
-  }
-  if (p.photometric) {
-    p.solve.emission_scale = kLumensPerWatt;
-    p.solve.min_reflectance = 1e-4;
-  }
-  for (const Luminaire& l : p.luminaires) spdlog::info("luminaire {}", l.describe());
-  plan_light_scenes(p);
-  if (!p.luminaires.empty()) {
-    const Visibility visibility(mesh);
-    for (const std::string& w : luminaire_warnings(visibility, p.luminaires)) spdlog::warn("{}", w);
-  }
+  // 2. Light sources.
+  if (request.coefficients)
+    steering_sky_light(p);
+  else
+    scene_light(p);
 
   // 3. Settings from the model and the quality (radiosity/solver/settings.h); every
   // setting the request gives overrides.
-  p.applied = apply_settings(mesh, request.settings, p.refine, p.solve);
+  SettingsRequest settings = request.settings;
+  if (request.coefficients) settings.patch_scale = request.coefficients->options.patch_factor;
+  p.applied = apply_settings(mesh, settings, p.refine, p.solve);
   const double patch_size = p.applied.patch_size;
 
   // 4. Patches, the outlines of hard shadows, the element hierarchy.
   p.patching = make_patches(mesh, patch_size);
-  if (request.shadow_outlines && !p.luminaires.empty()) {
+  if (request.shadow_outlines && !request.coefficients && !p.luminaires.empty()) {
     p.outlines = insert_shadow_outlines(mesh, p.luminaires, shadow_outline_options(patch_size));
     if (p.outlines.outlines > 0)
       spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
@@ -155,6 +195,13 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
     };
   s.solver = std::make_unique<Solver>(*p.scene.mesh, *p.hierarchy, options, p.refine, p.luminaires);
   *running = s.solver.get();
+  if (const auto& c = p.request.coefficients) {
+    if (c->indirect == nullptr || c->suns == nullptr)
+      throw std::invalid_argument("CoefficientRequest: indirect and suns must be given before the solve");
+    s.channel_visibility = std::make_unique<Visibility>(*p.scene.mesh);
+    s.solver->carry_coefficients(
+        coefficient_channels(*s.channel_visibility, p.luminaires.front(), *c->indirect, *c->suns, c->options));
+  }
   s.report = s.solver->run();
   s.output = s.solver->output();
   if (lit || !p.grids.empty() || !p.light_scenes.empty())
@@ -162,7 +209,8 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
                                                  p.solve.emission_scale, p.photometric));
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/analysis/
   // grid.h). With light scenes, from the channelled solve.
-  if (s.lit) s.grids = gather_grids(*s.lit, p.grids);
+  // Annual daylight's grids are its own: each point's coefficients (climate/).
+  if (s.lit && !p.request.coefficients) s.grids = gather_grids(*s.lit, p.grids);
   return s;
 }
 

@@ -9,6 +9,10 @@
 //   2. solve_scene(): the solve (radiosity/solver/solver.h), its output per vertex,
 //      and, when asked for, the lit scene and the scene file's grids gathered from it.
 //
+// Annual daylight (`dynrad annual`) asks for the same with SceneRequest::coefficients:
+// one solve under the steering sky whose light carries a channel per sky patch, the
+// ground and each sun position (radiosity/climate/coefficient_solve.h).
+//
 // What each host does around it (its options, checking its outputs can be written,
 // writing files or returning arrays) stays with the host.
 #pragma once
@@ -21,21 +25,40 @@
 #include "mesh/repair/simplify.h"
 #include "radiosity/analysis/grid.h"
 #include "radiosity/analysis/lit_scene.h"
+#include "radiosity/climate/coefficient_solve.h"
 #include "radiosity/design/light_scenes.h"
 #include "radiosity/pipeline/scene_sections.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
 #include "radiosity/sources/luminaire.h"
 #include "radiosity/sources/shadow_outlines.h"
+#include "radiosity/transfer/visibility.h"
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace dynrad::rad {
 
 enum class Units { automatic, photometric, radiometric };
+
+// Annual daylight's one solve (radiosity/climate/coefficient_solve.h). Instead of the
+// scene's light (its emission, luminaires and sky), the steering sky through the
+// model's windows and openings shoots, and its light carries one channel per patch of
+// `indirect`, the ground and each of `suns`; materials are grey of the same luminance
+// reflectance; no shadow outlines, no light scenes. The solve is progressive refinement
+// (whatever request.refine.method says) on patches options.patch_factor times its size,
+// a tenth of the model's diagonal, to 1% unshot unless the settings say otherwise: the
+// configuration whose coefficients tests/daylight_coefficients_test.cpp measures
+// against direct solves. A model without windows is refused.
+struct CoefficientRequest {
+  Vec3d up{0.0, 0.0, 1.0};
+  CoefficientOptions options;
+  const SkyPatches* indirect = nullptr;      // must outlive the solve
+  const std::vector<Vec3d>* suns = nullptr;  // the sun positions; must outlive the solve
+};
 
 // RefineSettings with the dynamic method, `dynrad solve`'s default.
 inline RefineSettings dynamic_refine() {
@@ -61,6 +84,7 @@ struct SceneRequest {
   SolveOptions solve;
   // Called after each shot with the running solver (for progress that shows its report).
   std::function<void(const Solver&, std::size_t shot, double unshot)> on_shot;
+  std::optional<CoefficientRequest> coefficients;  // annual daylight's solve (above)
 };
 
 // Everything up to the solve.
@@ -80,6 +104,7 @@ struct PreparedScene {
   PatchingReport patching;
   ShadowOutlineReport outlines;
   std::unique_ptr<ElementHierarchy> hierarchy;
+  std::shared_ptr<const Glazing> glazing;  // with coefficients: the windows the steering sky comes through
 };
 
 // Nothing would be lit: no emitting face, no luminaire, no sky.
@@ -89,7 +114,7 @@ class NoLightError : public InputError {
 };
 
 // Throws InputError (naming the file, and the line or entry) for what cannot be read or
-// lit: NoLightError for no light at all, radiometric units with luminaires, bad
+// lit: NoLightError for no light at all (with coefficients: for no window), radiometric units with luminaires, bad
 // settings. `loaded`, when given, is the model already read and repaired (a host that
 // builds it from arrays, or read it to check it): it is taken instead of reading
 // request.path, whose scene-file sections are still read when it is a scene file.
@@ -102,6 +127,7 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded = n
 void check_scene_sections(const std::string& path, const LoadedScene& loaded);
 
 struct SolvedScene {
+  std::unique_ptr<Visibility> channel_visibility;  // with coefficients: what the channels see by
   std::unique_ptr<Solver> solver;
   SolveReport report;
   Solver::Output output;

@@ -1,6 +1,7 @@
 // Options and results shared by the solvers.
 #pragma once
 
+#include "mesh/core/default_seed.h"
 #include "mesh/core/types.h"
 
 #include <cstdint>
@@ -37,7 +38,7 @@ struct SolveOptions {
   // 2, the worst 2.9%. The obstructed 1990 room's mean error: 0.93% (16), 0.89% (64).
   int primary_rays = 64;
   int escape_rays = 1024;          // rays per sender to measure the power it loses to the outside
-  std::uint64_t seed = 1;          // all sampling is seeded: same input, same answer
+  std::uint64_t seed = default_seed();  // all sampling is seeded: same input, same answer
   int threads = 0;                 // 0: all cores
   double crease_angle = 30;        // degrees; see mesh/core/vertex_split.h
   // Output only: add Cohen et al.'s (1988) ambient estimate of the light not yet shot,

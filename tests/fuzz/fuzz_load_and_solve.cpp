@@ -1,6 +1,7 @@
 // libFuzzer target for one import path (DYNRAD_FUZZ_FORMAT: obj, ply, off, stl, scene
 // or gltf, the last through assimp). The input bytes become a file of that format, which goes the whole way a
-// user's file goes: read, cleanup, scene mesh, patches, then a short dynamic solve.
+// user's file goes: through the pipeline every host calls (read, repair, light sources,
+// settings, patches), then a short dynamic solve.
 //
 // InputError is the expected answer to bad input and is caught here. Anything else is
 // a bug the fuzzer reports: another exception escaping, a crash, a sanitizer finding,
@@ -13,19 +14,9 @@
 //          (room.obj + room.mtl, panel.off, box.ply, tri.stl, downlight.ies; see
 //          write_scene_meshes).
 #include "mesh/core/error.h"
-#include "mesh/load.h"
-#include "mesh/core/refinement.h"
-#include "radiosity/sources/daylight.h"
-#include "radiosity/design/emergency.h"
-#include "radiosity/design/glare.h"
-#include "radiosity/design/light_scenes.h"
-#include "radiosity/analysis/grid_scene.h"
-#include "radiosity/analysis/views.h"
-#include "radiosity/sources/luminaire.h"
-#include "radiosity/solver/solver.h"
-#include "radiosity/pipeline/scene_sections.h"
-#include "radiosity/transfer/visibility.h"
+#include "radiosity/pipeline/pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -119,51 +110,47 @@ std::string stage_input(const Scratch& scratch, std::string_view bytes) {
   std::abort();
 }
 
-void load_and_solve(const std::string& path) {
-  using namespace dynrad;
-  ReadOptions read;
-  read.other_scene_keys = rad::scene_file_sections();  // as every host reads scenes
-  (void)rad::read_grids(path);
-  (void)rad::read_cameras(path);
-  (void)rad::read_observers(path);
-  (void)rad::read_emergency_areas(path);
-  LoadedScene scene = load_scene(path, {}, {}, read);
-  SceneMesh& mesh = *scene.mesh;
-  // Luminaires (their photometric files are the fuzz_ies and fuzz_ldt targets' job;
-  // here a scene may name downlight.ies, written beside it).
-  std::vector<rad::Luminaire> luminaires = rad::read_luminaires(path);
-  (void)rad::read_light_scenes(path, luminaires);
-  // The sky section is read and checked (its shots cost too many rays for a fuzz run).
-  (void)rad::read_daylight(path, scene.glazing, scene.openings);
-  if (luminaires.size() > 16) luminaires.resize(16);  // arrays: a few shots cover the paths
-  if (!(mesh.emitting_area() > 0) && luminaires.empty()) return;  // the command line refuses this (exit 2)
-  // Coarse patches and a few shots: the point is every code path, not accuracy.
-  const double patch_size = 4 * default_patch_size(mesh);
-  make_patches(mesh, patch_size);
-  const RefinementOptions refinement = refinement_for_patch_size(patch_size);
-  ElementHierarchy hierarchy(mesh, refinement);
-  rad::SolveOptions options;
-  options.max_iterations = 3;
-  options.threads = 1;
-  options.escape_rays = 64;
-  rad::RefineSettings refine;
-  refine.method = rad::Method::dynamic;
-  refine.max_level = 1;
+// The pipeline every host calls (radiosity/pipeline/pipeline.h), asked for a short
+// solve: coarse patches and a few shots, since the point is every code path, not
+// accuracy.
+dynrad::rad::SceneRequest short_solve(const std::string& path) {
+  dynrad::rad::SceneRequest request;
+  request.path = path;
+  request.simplify.enabled = true;  // as `dynrad solve` and the C ABI
+  request.settings.patch_scale = 4;
+  request.settings.max_level = 1;
   // A small emitting patch's first shot keeps its own path (rays, push-down error) but
   // no levels beyond: with the product's 2, the obj target's fixed-seed gate ran a
   // quarter of its inputs in its 300 s (RefineSettings::primary_levels).
-  refine.primary_levels = 0;
-  if (!luminaires.empty()) {
-    options.emission_scale = rad::kLumensPerWatt;
-    options.min_reflectance = 1e-4;
-    const rad::Visibility visibility(mesh);
-    (void)rad::luminaire_warnings(visibility, luminaires);
-  }
-  rad::Solver solver(mesh, hierarchy, options, refine, luminaires);
-  solver.run();
-  for (const Rgb& b : solver.output().radiosity)
+  request.refine.primary_levels = 0;
+  request.shadow_outlines = false;  // tens of luminaires' outlines per input: too slow for a gate
+  request.solve.max_iterations = 3;
+  request.solve.threads = 1;
+  request.solve.escape_rays = 64;
+  return request;
+}
+
+void load_and_solve(const std::string& path) {
+  using namespace dynrad;
+  // Throws InputError (NoLightError among them: the command line refuses a scene that
+  // nothing lights, exit 2) for what cannot be read or lit.
+  rad::PreparedScene prepared = rad::prepare_scene(short_solve(path));
+  rad::check_scene_sections(path, prepared.scene);  // cameras, observers, routes, light scenes
+  // The sky and the sun are read and checked, but their shots cost too many rays for a
+  // fuzz run; of an array of luminaires, a few cover the paths. Their photometric files
+  // are the fuzz_ies and fuzz_ldt targets' job: here a scene may name downlight.ies,
+  // written beside it. Grids are read, not gathered (48 x 48 rays a point).
+  std::vector<rad::Luminaire>& luminaires = prepared.luminaires;
+  luminaires.erase(std::remove_if(luminaires.begin(), luminaires.end(),
+                                  [](const rad::Luminaire& l) { return l.directional(); }),
+                   luminaires.end());
+  if (luminaires.size() > 16) luminaires.resize(16);
+  prepared.grids.clear();
+  if (!(prepared.scene.mesh->emitting_area() > 0) && luminaires.empty()) return;
+  const rad::SolvedScene solved = rad::solve_scene(prepared);
+  for (const Rgb& b : solved.output.radiosity)
     if (!b.is_finite()) bug("a vertex radiosity is not finite");
-  const rad::EnergyBalance& e = solver.energy();
+  const rad::EnergyBalance& e = solved.solver->energy();
   for (int c = 0; c < 3; ++c) {
     const double accounted = e.absorbed[c] + e.escaped[c] + e.unshot[c];
     if (!std::isfinite(accounted) || std::abs(accounted - e.emitted[c]) > 1e-6 * e.emitted[c])
