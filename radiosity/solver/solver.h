@@ -21,6 +21,7 @@
 #include "radiosity/transfer/form_factor.h"
 #include "radiosity/transfer/grow_array.h"
 #include "radiosity/sources/luminaire.h"
+#include "radiosity/solver/coefficient_channels.h"
 #include "radiosity/solver/oracle.h"
 #include "radiosity/solver/patch_state.h"
 #include "radiosity/solver/refine_settings.h"
@@ -29,6 +30,7 @@
 #include "radiosity/transfer/process_memory.h"
 #include "radiosity/transfer/receiver_tree.h"
 #include "radiosity/solver/solve_types.h"
+#include "radiosity/solver/solver_output.h"
 #include "radiosity/transfer/vertex_plane_map.h"
 #include "radiosity/transfer/visibility.h"
 
@@ -57,25 +59,7 @@ class Solver {
   SolveReport run();
   bool shoot_once();  // one shot from the brightest patch; false when nothing is left
 
-  // Per output vertex (see mesh/core/vertex_split.h) of the current mesh: the mean of the
-  // leaf corner values that meet there, weighted by the leaves' areas. (Unweighted, a
-  // sliver that a shot culled as a negligible receiver, and so holds less at a corner
-  // it shares with large lit elements, pulled the vertex down as much as they did: the
-  // 1990 room's largest error fell from 3.34% to 2.77% with the weights.)
-  struct Output {
-    VertexSplit split;
-    std::vector<Rgb> radiosity;
-    std::vector<char> emitter;  // the vertex belongs to an emitting surface
-    // Light arriving (irradiance; illuminance in photometric units), (B - emission) /
-    // reflectance per channel, averaged like `radiosity`. Where a channel's reflectance
-    // is 0 it is 0: see SolveOptions::min_reflectance.
-    std::vector<Rgb> irradiance;
-    // The estimated relative error of `radiosity` at the vertex (luminance), the terms of
-    // estimate_error() taken locally: the unshot light's share of the vertex's value, and
-    // half the largest hierarchical surplus of the leaves that meet there. 0 where the
-    // surface reflects nothing (its value is its emission, exact).
-    std::vector<float> error;
-  };
+  using Output = SolverOutput;  // solver_output.h
   Output output() { return output(options_.ambient_display); }
   Output output(bool ambient_display);  // with or without the ambient term, whatever the options
 
@@ -122,32 +106,9 @@ class Solver {
   void time_visibility(bool on) { visibility_->time_calls(on); }
   double seconds_in_embree() const { return visibility_->seconds_in_embree(); }
 
-  // Coefficient channels (solver_coefficients.cpp): `count` values per patch carried
-  // beside the colours, each the light of one part of the sky (climate/
-  // daylight_coefficients.h), so that one solve gives the interreflection of every sky.
-  // Every transfer is linear, so each channel moves as the luminance does: a patch that
-  // shoots sends its channels' unshot with the same factors as its luminance, a
-  // receiver takes them with the same form factor and reflectance. The solve itself
-  // (which patch shoots, where the mesh refines, when to stop) is steered by the colours,
-  // whose sky is a sum of the channels' with positive weights, so that it holds every
-  // channel's light. The sky's first shot splits a receiver's light into channels by
-  // `sky_mix` over the receiver (climate/coefficient_solve.cpp samples a few points):
-  // for channel j, the light there per unit of channel j over the light of the
-  // steering sky, both direct (so that the channels' light sums to the steering sky's
-  // with the weights; CoefficientChannels::relative tells the channels that are light of
-  // their own instead). Materials must be grey, the only source one sky luminaire
-  // (throws std::invalid_argument otherwise).
-  struct CoefficientChannels {
-    std::size_t count = 0;
-    // Channels from `relative` on (when below count) are not shares of the steering
-    // sky's light but the light itself: sky_mix writes their irradiance per unit area,
-    // which a receiver takes once, whatever the steering sky brought it (a sun's
-    // light, with its sharp shadows, is not a share of the sky's on the same patch).
-    std::size_t relative = SIZE_MAX;
-    // Writes `count` values to `mix` for a receiving triangle (facing n; a point when its
-    // corners are one).
-    std::function<void(const std::array<Vec3d, 3>& surface, const Vec3d& n, float* mix)> sky_mix;
-  };
+  // Coefficient channels (coefficient_channels.h, solver_coefficients.cpp): the light
+  // of each part of the sky carried beside the colours.
+  using CoefficientChannels = ::dynrad::rad::CoefficientChannels;
   void carry_coefficients(CoefficientChannels channels);  // before run()
   // Patch p's mean radiosity per channel, reflected light only (count values).
   const float* patch_coefficients(std::uint32_t p) const { return coefficient_total_.data() + p * coefficients_.count; }
