@@ -241,5 +241,38 @@ TEST(Grid, SceneFileGridsAreSolvedAndWritten) {
   EXPECT_FALSE(test::file_exists(dir.path("bad.ply")));
 }
 
+// A model solved with --scale (millimetres to metres) is read back by `grid` the same
+// way only when told: without --model-scale the two do not span the same box, and
+// `grid` refuses, naming the option, rather than gathering from the wrong emitters.
+TEST(Grid, ModelReadBackAsSolveReadItOrRefused) {
+  test::TempDir dir;
+  dir.write("room_mm.obj",
+            "mtllib room_mm.mtl\nusemtl wall\n"
+            "v 0 0 0\nv 4000 0 0\nv 4000 3000 0\nv 0 3000 0\n"
+            "v 0 0 2800\nv 4000 0 2800\nv 4000 3000 2800\nv 0 3000 2800\n"
+            "f 1 2 3 4\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\nusemtl light\nf 5 8 7 6\n");
+  dir.write("room_mm.mtl", "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl light\nKd 0.5 0.5 0.5\nKe 10 10 10\n");
+  const std::string model = dir.path("room_mm.obj");
+  const auto r = test::run_dynrad("solve -q '" + model + "' --scale 0.001 -o '" + dir.path("lit.ply") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string grid = " --grid 1,1,2,2 --height 0.75 --spacing 0.25 --name desk -o '";
+  const auto refused = test::run_dynrad("grid -q '" + dir.path("lit.ply") + "' --model '" + model + "'" + grid +
+                                        dir.path("mm") + "'");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--model-scale"), std::string::npos) << refused.output;
+  EXPECT_FALSE(test::file_exists(dir.path("mm_grids.json")));
+  const auto read = test::run_dynrad("grid -q '" + dir.path("lit.ply") + "' --model '" + model +
+                                     "' --model-scale 0.001" + grid + dir.path("m") + "'");
+  ASSERT_EQ(read.exit_code, 0) << read.output;
+  const auto d = nlohmann::json::parse(test::read_text(dir.path("m_grids.json")))["grids"][0];
+  EXPECT_EQ(d["count"], 16);
+  EXPECT_GT(d["Eavg"].get<double>(), 0);
+  // probe reads its --model the same way.
+  const auto probed = test::run_dynrad("probe '" + dir.path("lit.ply") + "' --grid 1,1,2,2,0.5,0 --model '" +
+                                       model + "'");
+  EXPECT_EQ(probed.exit_code, 2) << probed.output;
+  EXPECT_NE(probed.output.find("--model-up and --model-scale"), std::string::npos) << probed.output;
+}
+
 }  // namespace
 }  // namespace dynrad

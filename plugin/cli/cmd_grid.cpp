@@ -89,6 +89,7 @@ int run_grid(const GridOptions& options) {
   LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
   for (const auto& w : loaded.warnings) spdlog::warn("{}", w);
   const SceneMesh& model = *loaded.mesh;
+  check_model_matches(lit, options.lit, model, options.model);
   const rad::Visibility model_index(model);
   rad::LitScene scene;
   scene.positions = lit.positions;
@@ -173,6 +174,7 @@ Command add_grid_command(CLI::App& app) {
   command->add_option("--exposure", options->exposure, "Exposure of the true-colour views (default: automatic)")
       ->check(CLI::PositiveNumber);
   add_cleanup_options(*command, options->model_load);
+  add_model_axis_options(*command, options->model_load);
   return [options] { return run_grid(*options); };
 }
 

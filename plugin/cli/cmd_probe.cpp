@@ -248,6 +248,7 @@ int run_probe(const ProbeOptions& options) {
   if (!options.model.empty()) {
     LoadedScene loaded = load_scene(options.model, options.model_load.cleanup(), {}, options.model_load.read());
     for (const auto& w : loaded.warnings) spdlog::warn("{}", w);  // its materials give the irradiance
+    check_model_matches(lit, options.lit, *loaded.mesh, options.model);
     model = std::move(loaded.mesh);
     model_index = std::make_unique<rad::Visibility>(*model);
   }
@@ -384,6 +385,7 @@ Command add_probe_command(CLI::App& app) {
   command->add_option("--reflectance", options->reflectance,
                       "r[,g,b]: reflectance for all points (emission taken as 0), for irradiance");
   add_cleanup_options(*command, options->model_load);  // as for solve, when reading --model
+  add_model_axis_options(*command, options->model_load);
   command->add_flag("--json", options->json, "Print JSON instead of a table");
   command->add_option("-o,--output", options->output, "Write the table or JSON here instead of standard output");
   return [options] { return run_probe(*options); };

@@ -63,5 +63,8 @@ void add_load_options(CLI::App& command, LoadOptions& options);
 void add_cleanup_options(CLI::App& command, LoadOptions& options);
 // `--no-simplify`, for the commands that patch the model (solve, info).
 void add_simplify_flag(CLI::App& command, LoadOptions& options);
+// --model-up and --model-scale: how a command that reads a lit mesh reads the model it
+// was lit from, as `solve` read it with --up and --scale.
+void add_model_axis_options(CLI::App& command, LoadOptions& options);
 
 }  // namespace dynrad::cli

@@ -3,6 +3,8 @@
 
 #include "mesh/core/error.h"
 
+#include <fmt/format.h>
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
@@ -65,6 +67,24 @@ LitMesh read_lit(const std::string& path) {
     for (std::uint32_t v : lit.triangles[f]) lit.around[fill[lit.place[v]]++] = f;
   lit.diagonal = bounds.diagonal();
   return lit;
+}
+
+void check_model_matches(const LitMesh& lit, const std::string& lit_path, const SceneMesh& model,
+                         const std::string& model_path) {
+  Bounds lit_box;
+  for (const Vec3d& p : lit.positions) lit_box.extend(p);
+  const Bounds model_box = model.bounds();
+  if (lit_box.empty() || model_box.empty()) return;
+  const double tolerance = 0.01 * lit_box.diagonal();
+  if ((lit_box.lo - model_box.lo).norm() <= tolerance && (lit_box.hi - model_box.hi).norm() <= tolerance) return;
+  throw InputError(model_path, 0,
+                   fmt::format("this model, as read, spans ({:.4g}, {:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g}), but "
+                               "{} spans ({:.4g}, {:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g}): it was lit from another "
+                               "model, or from this one read another way. Give --model-up and --model-scale as solve "
+                               "was given --up and --scale.",
+                               model_box.lo[0], model_box.lo[1], model_box.lo[2], model_box.hi[0], model_box.hi[1],
+                               model_box.hi[2], lit_path, lit_box.lo[0], lit_box.lo[1], lit_box.lo[2], lit_box.hi[0],
+                               lit_box.hi[1], lit_box.hi[2]));
 }
 
 const Material* material_at(const SceneMesh& model, const rad::Visibility& index, const Vec3d& point,

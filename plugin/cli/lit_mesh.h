@@ -31,6 +31,13 @@ struct LitMesh {
 // Throws InputError when the file is not a PLY written by dynrad solve.
 LitMesh read_lit(const std::string& path);
 
+// Throws InputError naming both files when `model`, as read, does not span the lit
+// mesh's box (each corner within 1% of the lit mesh's diagonal): the PLY was lit from
+// another model, or from this one read with another --up or --scale (--model-up,
+// --model-scale).
+void check_model_matches(const LitMesh& lit, const std::string& lit_path, const SceneMesh& model,
+                         const std::string& model_path);
+
 // The material of the model face at `point` facing along `normal`. A short ray from a
 // hair above the point (along the normal) finds a face within twice that hair; then,
 // as a search of every face would, the faces around its corners that face within 30

@@ -38,6 +38,14 @@ void add_load_options(CLI::App& command, LoadOptions& options) {
   add_cleanup_options(command, options);
 }
 
+void add_model_axis_options(CLI::App& command, LoadOptions& options) {
+  command.add_option("--model-up", options.up, "--model's up axis, as given to solve with --up: auto, y or z")
+      ->check(CLI::IsMember({"auto", "y", "z"}))
+      ->capture_default_str();
+  command.add_option("--model-scale", options.scale, "--model's scale to metres, as given to solve with --scale")
+      ->check(CLI::PositiveNumber);
+}
+
 void add_simplify_flag(CLI::App& command, LoadOptions& options) {
   command.add_flag("!--no-simplify", options.simplify,
                    "Keep every cleaned triangle: do not merge the triangles of flat regions before patching");
