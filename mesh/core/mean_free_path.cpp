@@ -79,6 +79,7 @@ MeanFreePath mean_free_path(const SceneMesh& scene, const MeanFreePathOptions& o
   }
   out.escaped /= std::max(1, out.rays);
   out.length = hits > 0 ? sum / hits : 0;
+  out.met = static_cast<double>(hits) / std::max(1, out.rays);
   return out;
 }
 

@@ -20,6 +20,7 @@ struct MeanFreePathOptions {
 struct MeanFreePath {
   double length = 0;        // mean distance to the first hit, over the rays that hit; 0 when none did
   double escaped = 0;       // fraction of the rays that left the model
+  double met = 0;           // fraction of the rays that met another face: those `length` is the mean of
   int rays = 0;
 };
 

@@ -53,7 +53,9 @@ ChosenSettings choose_settings(const SceneMesh& scene, Quality quality) {
   s.quality = quality;
   s.preset = quality_preset(quality);
   s.diagonal = scene.bounds().diagonal();
-  s.mean_free_path = mean_free_path(scene).length;
+  const MeanFreePath path = mean_free_path(scene);
+  s.mean_free_path = path.length;
+  s.rays_met = path.met;
   if (s.mean_free_path > 0) {
     // As a fraction of the diagonal rounded to three digits: the rays are traced in
     // single precision, and the same model scaled or moved must get the same patches.

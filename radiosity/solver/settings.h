@@ -39,6 +39,7 @@ struct ChosenSettings {
   Quality quality = Quality::normal;
   QualityPreset preset;
   double mean_free_path = 0;  // model units; 0 when no ray met a surface
+  double rays_met = 0;        // the fraction of its rays that met another surface
   double diagonal = 0;        // of the bounding box
   double patch_size = 0;
   std::string patch_size_rule;  // how patch_size was found, for the report
