@@ -173,7 +173,7 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
   // escape, and the few that meet something (a lamp facing the ceiling it hangs under)
   // make the patches tiny: a 2 m room so exported got 790,000 patches.
   const ChosenSettings& chosen = p.applied.chosen;
-  if (chosen.mean_free_path > 0 && chosen.rays_met < kFewRaysMet && p.applied.patch_size_rule.rfind("mean free", 0) == 0)
+  if (p.applied.from_model && chosen.mean_free_path > 0 && chosen.rays_met < kFewRaysMet)
     spdlog::warn("only {:.1f}% of the rays leaving the surfaces' fronts met another surface, so the patch size ({:.4g}) "
                  "rests on a few of them. If the model is a closed building, its faces may point outward: check the "
                  "normals (Blender: Face Orientation), or give --patch-size.",

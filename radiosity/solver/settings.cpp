@@ -84,6 +84,7 @@ AppliedSettings apply_settings(const SceneMesh& scene, const SettingsRequest& re
   } else if (dynamic) {
     out.patch_size = c.patch_size * request.patch_scale;
     out.patch_size_rule = c.patch_size_rule;
+    out.from_model = true;
   } else {
     out.patch_size = default_patch_size(scene) * request.patch_scale;
     out.patch_size_rule = "a tenth of the diagonal";

@@ -70,6 +70,7 @@ struct AppliedSettings {
   ChosenSettings chosen;
   double patch_size = 0;
   std::string patch_size_rule;
+  bool from_model = false;  // patch_size is chosen.patch_size (times the request's scale)
 };
 
 struct RefineSettings;  // radiosity/solver/solver.h
