@@ -29,7 +29,10 @@
 // Luminaires (luminaire.h) are senders of the same walk: before the first patch, each
 // shoots once, exactly; its "form factor" at a corner is the illuminance it gives there
 // per unit of its colour (Solver::luminaire_illuminance), so that everything below
-// (oracle, push-down, subdivision, energy) is the patches'.
+// (oracle, push-down, subdivision, energy) is the patches'. Under
+// RefineSettings::exact_direct (the default) a luminaire's or the sun's shot stops at
+// the patches: it gives each its first bounce and refines nothing, and its light is
+// evaluated exactly where it is seen (exact_direct.cpp).
 // Subdividing is the paper's 1 -> 4 split: two bisections, so the second half of a
 // split is always visited. In dynamic, new elements start from their parent's cumulated
 // radiosity, interpolated from its corners (Dubuis & Bieri); in adaptive, their values
@@ -176,6 +179,13 @@ ShotRules Solver::shot_rules(std::uint32_t i) {
   r.from_luminaire = is_luminaire(i);
   r.primary = refine_.sharp_primary_patches && refine_.method == Method::dynamic && primary_patch_unshot(i);
   r.sharp = (r.from_luminaire && luminaire(i).kind != Luminaire::Kind::sky) || r.primary;
+  // Exact direct light (exact_direct.cpp): the shot reaches the patches and stops there.
+  r.direct = is_direct_sender(i);
+  if (r.direct) {
+    shot_max_rays_ = options_.max_rays;
+    r.oracle = r.detail_oracle = refine_.dynamic;
+    return r;  // max_generation 0: nothing is split
+  }
   shot_max_rays_ = r.primary ? std::max(options_.max_rays, options_.primary_rays) : options_.max_rays;
   const int sharp_levels = r.primary ? refine_.primary_levels : r.sharp ? refine_.luminaire_levels : 0;
   r.max_generation = 2 * (refine_.max_level + sharp_levels);
@@ -251,6 +261,13 @@ void Solver::shoot_element(ElementId q, const ShotRules& rules, const Rgb& shot,
   for (int k = 0; k < 3; ++k) {
     in.current[k] = patch.reflectance * shot * form_factor(q, k);
     in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
+  }
+  in.direct = patch.direct.luminance();
+  if (rules.direct) {  // to the patches only, and into no element's values (exact_direct.cpp)
+    out.terminals.push_back(q);
+    out.reach.push_back(element_reach(q));
+    out.count(el);
+    return;
   }
   // Dynamic refines deeper where a shadow's edge crosses q (RefineSettings::shadow_levels).
   const bool detail = rules.sharp && patch.detail;
@@ -386,6 +403,8 @@ void Solver::update(std::uint32_t i, const Rgb& shot) {
     index_shot_patch(i);
     patches_[i].shot += shot;
   }
+  // Who lit each patch is known once the last luminaire has shot (exact_direct.cpp).
+  if (is_luminaire(i) && next_luminaire_ == luminaires_.size()) build_direct_lists();
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   report_.transfers_history.push_back(report_.energy_transfers);

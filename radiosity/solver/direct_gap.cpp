@@ -49,8 +49,10 @@ constexpr int kDirectRays = 16;             // per emitting patch and point, aft
 
 void Solver::choose_direct_sources() {
   direct_sources_.clear();
+  // (Luminaires and the sun are exact at the vertices under RefineSettings::
+  // exact_direct, their display gap is exact_direct.cpp's; they shoot first anyway.)
   for (std::size_t k = 0; k < luminaires_.size(); ++k)
-    if (luminaires_[k].kind != Luminaire::Kind::sky)
+    if (luminaires_[k].kind != Luminaire::Kind::sky && !refine_.exact_direct)
       direct_sources_.push_back(static_cast<std::uint32_t>(patches_.size() + k));
   std::vector<std::uint32_t> emitting;
   for (std::uint32_t j = 0; j < patches_.size(); ++j)

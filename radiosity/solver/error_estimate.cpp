@@ -39,7 +39,8 @@ ErrorEstimate Solver::estimate_error(bool shadows) {
           const double ambient_here = (patch.reflectance * ambient_now).luminance();
           const auto& v = value_[e];
           const double mean = (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3;
-          s.radiosity_area += el.area * (mean + (options_.ambient_display ? ambient_here : 0.0));
+          s.radiosity_area +=
+              el.area * (mean + patch.direct.luminance() + (options_.ambient_display ? ambient_here : 0.0));
           s.unshot_area += el.area * (patch.reflectance * ambient_error).luminance();
           const double bend = 0.5 * surplus(e);
           s.surplus_area += el.area * bend;
@@ -78,7 +79,8 @@ Rgb Solver::unshot_error_radiosity() const {
 }
 
 double Solver::mesh_error(ElementId e) const {
-  return std::max(0.5 * surplus(e), kDirectGapWeight * direct_gap(e));
+  // (the display gap: direct light evaluated outside the hierarchy, exact_direct.cpp)
+  return std::max(0.5 * surplus(e), kDirectGapWeight * direct_gap(e) + display_gap(e));
 }
 
 double Solver::surplus(ElementId e) const {

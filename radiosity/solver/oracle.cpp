@@ -5,10 +5,11 @@
 namespace dynrad::rad {
 namespace {
 
-double relative_spread(const std::array<Rgb, 3>& v) {
+// (max - min) / (max + offset): `offset` is light the values leave out (OracleInputs::direct).
+double relative_spread(const std::array<Rgb, 3>& v, double offset = 0) {
   const double a = v[0].luminance(), b = v[1].luminance(), c = v[2].luminance();
   const double hi = std::max({a, b, c}), lo = std::min({a, b, c});
-  return hi > 0 ? (hi - lo) / hi : 0.0;
+  return hi + offset > 0 ? (hi - lo) / (hi + offset) : 0.0;
 }
 
 double mean_luminance(const std::array<Rgb, 3>& v) {
@@ -17,15 +18,15 @@ double mean_luminance(const std::array<Rgb, 3>& v) {
 
 }  // namespace
 
-double cumulated_gradient(const OracleInputs& in) { return relative_spread(in.cumulated); }
+double cumulated_gradient(const OracleInputs& in) { return relative_spread(in.cumulated, in.direct); }
 double current_gradient(const OracleInputs& in) { return relative_spread(in.current); }
 double current_ratio(const OracleInputs& in) {
-  const double cumulated = mean_luminance(in.cumulated);
+  const double cumulated = mean_luminance(in.cumulated) + in.direct;
   return cumulated > 0 ? mean_luminance(in.current) / cumulated : 0.0;
 }
 double pushdown_gradient(const OracleInputs& in, double floor) {
   const double hi = std::max({in.cumulated[0].luminance(), in.cumulated[1].luminance(), in.cumulated[2].luminance()});
-  const double scale = std::max(in.current_peak, floor * (hi + in.ambient));
+  const double scale = std::max(in.current_peak, floor * (hi + in.ambient + in.direct));
   return scale > 0 ? in.pushdown_error / scale : 0.0;
 }
 

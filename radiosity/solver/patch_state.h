@@ -19,6 +19,10 @@ struct PatchState {
   Vec3d normal;
   Rgb reflectance, emission;
   Rgb shot;  // radiosity shot so far, in total
+  // The mean radiosity its direct light gives it, reflectance times the mean
+  // illuminance from luminaires and the sun (RefineSettings::exact_direct): their light
+  // is not in the element values, but is part of how bright the patch is.
+  Rgb direct;
   double lost = -1, escaped = 0;  // see lost_fraction()
   double rough_lost = -1;         // see rough_lost_fraction(), until `lost` is known
   std::uint32_t plane = 0;        // patches with the same facing share form factors at a vertex

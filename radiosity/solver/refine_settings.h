@@ -66,6 +66,20 @@ struct RefineSettings {
   // levels bound); with 3 and a quarter, 0.29% (64,000 elements).
   int luminaire_levels = 3;
   double luminaire_pushdown = 0.25;
+  // Direct light where it is seen (exact_direct.cpp): luminaires and the sun (not the
+  // sky) shoot into the walk like any sender, but only to the patches: each patch
+  // takes the power it receives (its first bounce, reflected into its unshot light)
+  // and remembers who lit it, and no element is split for them and no corner value
+  // holds their light. Their direct light is computed exactly, with shadow rays, at
+  // every vertex the solve writes (and at grid points, as before), and once the shots
+  // are done the mesh is refined for display where that light bends or a shadow's
+  // edge crosses an element (luminaire_levels, luminaire_pushdown and shadow_levels
+  // then apply to that pass). So the thousands of shots after the luminaires' walk a
+  // mesh made for the light between surfaces, not for the pools under each lamp: on
+  // one storey of the generated office, 3.4-4.0 M of 4.3 M elements had been the
+  // luminaires' (bench/results/whole_buildings.md). Off: luminaires' shots refine the
+  // hierarchy as the sharpest senders and their light lives in it.
+  bool exact_direct = true;
   // Dynamic: the first shot of a primary emitting patch (Solver's direct sources: the
   // emitting patches when at most 16 hold 90% of the emitted power, a small area light
   // such as the 1990 room's 0.5 m source) refines as a luminaire's shot does, with

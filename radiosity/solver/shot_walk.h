@@ -37,6 +37,9 @@ struct WalkChunk {
 // sharper: see shot_rules()).
 struct ShotRules {
   bool from_luminaire = false, primary = false, sharp = false;
+  // A luminaire or the sun under RefineSettings::exact_direct: the shot stops at the
+  // patches and leaves the element values alone (exact_direct.cpp).
+  bool direct = false;
   int max_generation = 0, detail_generation = 0;  // how deep elements may go (detail: on Patch::detail)
   OracleThresholds oracle, detail_oracle;
   Rgb ambient_now;  // for the push-down oracle (OracleThresholds::pushdown_ambient)

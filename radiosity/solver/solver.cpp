@@ -221,6 +221,9 @@ SolveReport Solver::run() {
     if (!shoot_once()) break;
     if (options_.on_shot) options_.on_shot(report_.iterations, unshot_fraction());
   }
+  // The display's refinement for direct light (exact_direct.cpp), then the estimate
+  // with what it left.
+  refine_for_display();
   report_.seconds = elapsed();
   report_.estimated_error = estimate_error();
   report_.unshot_fraction = unshot_fraction();

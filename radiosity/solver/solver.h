@@ -490,6 +490,52 @@ class Solver {
   // patch size of it hold unshot beyond the ambient term's mean, sum of F (U_j - mean); times
   // the reflectance, what the written value adds to the ambient term (near_unshot.cpp).
   std::vector<Rgb> near_unshot(const std::vector<char>& wanted) const;
+  // Exact direct light (RefineSettings::exact_direct; exact_direct.cpp). Luminaires
+  // and the sun shoot to the patches only; their light at a point is evaluated there.
+  bool is_direct_sender(std::uint32_t id) const {
+    return refine_.exact_direct && is_luminaire(id) && luminaire(id).kind != Luminaire::Kind::sky;
+  }
+  // In a direct sender's shot: patch p takes `radiosity` (its mean, reflected) and
+  // notes the sender among those that lit it.
+  void note_direct(std::uint32_t patch, const Rgb& radiosity);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> lit_by_;  // (patch, luminaire index), as booked
+  // Per patch, the luminaires (indices into luminaires_) that lit it: lit_luminaires_
+  // from lit_first_[p] to lit_first_[p + 1]. Built from lit_by_ once they have all shot.
+  std::vector<std::uint32_t> lit_first_, lit_luminaires_;
+  bool direct_lists_built_ = false;
+  void build_direct_lists();
+  bool directly_lit(std::uint32_t patch) const;
+  // The luminaires that lit a patch around receiver r's vertex with r's facing.
+  void receiver_luminaires(std::uint32_t r, std::vector<std::uint32_t>& out) const;
+  // Direct illuminance (per channel, with each luminaire's colour) at a point, and the
+  // share of it that arrives (luminance; 1 where none could); seen < 0: not computed.
+  struct DirectAt {
+    float r = 0, g = 0, b = 0;
+    float seen = -1;
+  };
+  // At x (normal n) from `lights` (luminaire indices), with rays seeded by `key`.
+  DirectAt direct_at(const Vec3d& x, const Vec3d& n, const std::vector<std::uint32_t>& lights, std::uint64_t key) const;
+  std::vector<DirectAt> receiver_direct_;  // per receiver, computed when wanted
+  void compute_receiver_direct(std::vector<std::uint32_t> wanted);
+  Rgb receiver_direct(std::uint32_t r) const;  // illuminance; 0 where not computed or unlit
+  // Leaf e's direct light (luminance, reflected) against linear interpolation between its
+  // corners (exact_direct.cpp).
+  struct DisplayError {
+    double error = 0;       // the push-down oracle's measure at its edge midpoints and centroid
+    double gap = 0;         // that, or what rays at its centroid find, the larger
+    bool shadow = false;    // its corners see shares of the light that differ by more than a quarter
+    bool resolved = false;  // small enough for a point source's shadow edge
+  };
+  DisplayError direct_display_error(ElementId e) const;
+  // After the shots: refines where direct light needs it for display (see above).
+  void refine_for_display();
+  std::vector<float> display_gap_;  // per element: direct_display_error() of a leaf
+  bool refining_for_display_ = false;  // new elements interpolate their parent alone
+  double display_gap(ElementId e) const;  // weighted as the mesh error takes it
+  // Patch p's direct light (luminance, reflected) at a node of its quarter grid, node
+  // number k (for its shape, shape_of()); 0 for a patch no direct sender lit.
+  double direct_luminance_at_node(const Patch& patch, std::uint32_t p, const Vec3d& node, int k) const;
+
   // The mesh's error on the primary sources' shadows (direct_gap.cpp): per leaf, the
   // unoccluded direct light at the centroid times the reflectance times |the share of
   // it that arrives there - the mean of the corners' shares|. Kept for the elements and

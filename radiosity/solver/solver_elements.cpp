@@ -27,7 +27,9 @@ void Solver::gather_new_elements(std::size_t first) {
   // Earlier shots, and the current one (the sender's unshot was moved to current_shot_).
   // Luminaires that have shot (the current one included) come first, as they shot.
   std::vector<std::uint32_t> shooters;
-  for (std::size_t k = 0; k < next_luminaire_; ++k) shooters.push_back(static_cast<std::uint32_t>(patches_.size() + k));
+  for (std::size_t k = 0; k < next_luminaire_; ++k)  // (but direct senders: exact_direct.cpp)
+    if (!is_direct_sender(static_cast<std::uint32_t>(patches_.size() + k)))
+      shooters.push_back(static_cast<std::uint32_t>(patches_.size() + k));
   for (std::uint32_t j = 0; j < patches_.size(); ++j)
     if (!patches_[j].shot.is_zero() || j == sender_) shooters.push_back(j);
   auto shot_of = [this](std::uint32_t j) {
@@ -171,7 +173,9 @@ void Solver::initialise_values(ElementId first, std::size_t count) {
     ElementId source = el.parent;
     while (source >= first) source = hierarchy_.element(source).parent;
     const auto& p = value_[source];
-    const bool bends = refine_.near_field_start && refine_.method == Method::dynamic;
+    // (not in the display's refinement: its vertices show the values between the solve's
+    // corners as those corners' elements interpolate them; exact_direct.cpp)
+    const bool bends = refine_.near_field_start && refine_.method == Method::dynamic && !refining_for_display_;
     // (see below: whether the source lacks push-down its ancestors still hold)
     const bool stale = bends && pending_above(source);
     if (refine_.new_elements == RefineSettings::NewElements::constant) {

@@ -46,6 +46,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
   std::vector<float> channel_incident(channels);
   if (channels > 0 && from_luminaire) mix_sky(terminals, reach);
   const double shot_luminance = shot_radiosity.luminance();
+  const bool direct = is_direct_sender(sender_id);  // its light stays out of the values (exact_direct.cpp)
   auto book = [&](std::uint32_t patch_id, double patch_reach) {
     if (patch_reach <= 0) return;
     Patch& receiver = patches_[patch_id];
@@ -64,6 +65,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
       part_unshot_[clusters_.part_of_patch[patch_id]] += reflected;
     else
       receiver.unshot += reflected * (1.0 / receiver.area);  // eq. 3: area-weighted pull-up
+    if (direct) note_direct(patch_id, reflected * (1.0 / receiver.area));
     report_.energy.absorbed += incident - reflected;
     incident_total += incident;
   };
@@ -93,8 +95,10 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
       part_unshot_[k] += reflected;
       report_.energy.absorbed += incident - reflected;
       incident_total += incident;
-      part_pending_[k] += shot_radiosity * f;
-      cluster_state_[c].dirty = true;
+      if (!direct) {
+        part_pending_[k] += shot_radiosity * f;
+        cluster_state_[c].dirty = true;
+      }
       if (channels > 0 && from_luminaire) {
         incident_coefficients(coefficient_slot_[patches_.size() + k], shot_luminance * f * scale,
                               channel_incident.data());
@@ -104,6 +108,16 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
       }
     }
   }
+  // A direct sender's light on the clusters received as one: each patch's mean.
+  if (direct)
+    for (std::uint32_t c : whole_clusters_) {
+      const auto& cl = clusters_.clusters[c];
+      for (std::uint32_t n = cl.first_member; n < cl.first_member + cl.member_count; ++n) {
+        const std::uint32_t p = clusters_.members[n];
+        const double f = part_form_factor_[clusters_.part_of_patch[p]];
+        if (f > 0) note_direct(p, patches_[p].reflectance * shot_radiosity * (f * scale));
+      }
+    }
   if (channels > 0 && from_luminaire) std::fill(coefficient_slot_.begin(), coefficient_slot_.end(), UINT32_MAX);
   // What no front face received: out of the scene, or onto black back faces. In a
   // closed scene only rounding is left; it is booked as absorbed.
@@ -118,6 +132,7 @@ void Solver::account_transfers(const std::vector<ElementId>& terminals, const st
 Solver::Output Solver::output(bool ambient_display) {
   flush_all();
   update_direct_gaps();
+  build_direct_lists();
   Output out;
   out.split = split_vertices(scene_, options_.crease_angle);
   out.radiosity.assign(out.split.size(), Rgb());
@@ -143,6 +158,16 @@ Solver::Output Solver::output(bool ambient_display) {
     }
     near = near_unshot(wanted);
   }
+  // Direct light at every receiver of a lit patch (exact_direct.cpp).
+  if (!lit_luminaires_.empty()) {
+    std::vector<std::uint32_t> wanted;
+    for (auto f : mesh.faces()) {
+      const ElementId e = hierarchy_.element_of(f);
+      if (directly_lit(hierarchy_.element(e).patch))
+        for (int j = 0; j < 3; ++j) wanted.push_back(corner_receiver_[e][j]);
+    }
+    compute_receiver_direct(std::move(wanted));
+  }
   for (auto f : mesh.faces()) {
     const ElementId e = hierarchy_.element_of(f);
     const Element& el = hierarchy_.element(e);
@@ -154,8 +179,9 @@ Solver::Output Solver::output(bool ambient_display) {
       const auto node = out.split.corner[3 * f.idx() + k++];
       for (int j = 0; j < 3; ++j)
         if (el.corners[j] == v) {
-          const Rgb b = value_[e][j] + extra +
-                        (near.empty() ? Rgb() : patches_[el.patch].reflectance * near[corner_receiver_[e][j]]);
+          const std::uint32_t r = corner_receiver_[e][j];
+          const Rgb b = value_[e][j] + extra + patches_[el.patch].reflectance * receiver_direct(r) +
+                        (near.empty() ? Rgb() : patches_[el.patch].reflectance * near[r]);
           out.radiosity[node] += b * el.area;
           out.irradiance[node] += arriving(b, patches_[el.patch]) * el.area;
         }

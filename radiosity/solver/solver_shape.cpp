@@ -51,7 +51,9 @@ SenderShape Solver::shape_of(std::uint32_t patch, double m) {
   for (int k = 0; k < kTriangleNodes; ++k) {
     const int corner = static_cast<int>(std::find(std::begin(kGridCorners), std::end(kGridCorners), k) -
                                         std::begin(kGridCorners));
-    const double now = corner < 3 ? value_[root][corner].luminance() : luminance_at(root, node[k]);
+    // (with its direct light, which the values leave out: exact_direct.cpp)
+    const double now = (corner < 3 ? value_[root][corner].luminance() : luminance_at(root, node[k])) +
+                       direct_luminance_at_node(sender, patch, node[k], k);
     b[k] = now - sender.shot_at_nodes[k];
   }
   // The quarter grid's nodes that are not corners or edge midpoints each lie halfway
