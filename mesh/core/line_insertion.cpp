@@ -120,6 +120,7 @@ class LineWalk {
           end = split_edge(mesh_.edge_handle(mesh_.find_halfedge(v, b)), on_segment(pv, pb, q));
         else
           end = split_face(mesh_.face_handle(across), q);
+        if (!end.is_valid()) break;
         mark(v, end);
         v = end;
         r.reached_end = true;
@@ -182,13 +183,39 @@ class LineWalk {
     for (VertexHandle c : near)
       if (c.is_valid() && c != walking_from && (mesh_.point(c) - x).norm() <= options_.snap) return c;
     ++result_.vertices_added;
-    return dynrad::split_edge(mesh_, e, x, scene_.line_width_property()).vertex;
+    return cut(e, x);
   }
 
-  // Splits face f at x (1 -> 3).
+  VertexHandle cut(OpenMesh::EdgeHandle e, const Vec3d& x) {
+    return options_.split ? options_.split(e, x).vertex : dynrad::split_edge(mesh_, e, x, scene_.line_width_property()).vertex;
+  }
+
+  // Splits face f at x (1 -> 3; with LineOptions::split, two edge splits).
   VertexHandle split_face(FaceHandle f, const Vec3d& x) {
     for (auto c : mesh_.fv_range(f))
       if ((mesh_.point(c) - x).norm() <= options_.snap) return c;
+    if (options_.split) {
+      // The longest edge a -> b and the corner c opposite it: the line from c through x
+      // meets a -> b at y; split there, then the new edge c - y at x.
+      OpenMesh::HalfedgeHandle longest;
+      double length = -1;
+      for (auto h : mesh_.fh_range(f))
+        if (mesh_.calc_edge_sqr_length(h) > length) {
+          length = mesh_.calc_edge_sqr_length(h);
+          longest = h;
+        }
+      const VertexHandle a = mesh_.from_vertex_handle(longest), b = mesh_.to_vertex_handle(longest);
+      const VertexHandle c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(longest));
+      const Vec3d pa = mesh_.point(a), pb = mesh_.point(b), pc = mesh_.point(c);
+      const double denominator = cross_n(x - pc, pb - pa);
+      if (!(std::abs(denominator) > 0)) return VertexHandle();
+      const double t = std::clamp(cross_n(pa - pc, x - pc) / denominator, 0.0, 1.0);
+      const VertexHandle y = cut(mesh_.edge_handle(longest), pa + (pb - pa) * t);
+      const OpenMesh::HalfedgeHandle cy = mesh_.find_halfedge(c, y);
+      if (!cy.is_valid()) return y;
+      ++result_.vertices_added;
+      return cut(mesh_.edge_handle(cy), x);
+    }
     const Vec3d normal = mesh_.normal(f);
     const VertexHandle m = mesh_.add_vertex(x);
     mesh_.split_copy(f, m);
@@ -223,6 +250,7 @@ InsertedLine insert_line(SceneMesh& scene, FaceHandle start, const Vec3d& p, con
   const FaceHandle f = walk.locate(start, p);
   if (!f.is_valid()) return {};
   const VertexHandle v = walk.insert_point(f, p);
+  if (!v.is_valid()) return {};
   return walk.walk(v, q);
 }
 

@@ -18,9 +18,11 @@
 // passing near a corner bends by less than `snap` rather than leaving a sliver.
 #pragma once
 
+#include "mesh/core/refinement.h"
 #include "mesh/core/scene_mesh.h"
 
 #include <cstddef>
+#include <functional>
 
 namespace dynrad {
 
@@ -33,6 +35,11 @@ struct LineOptions {
   float width = 1;
   // Faces searched, from the start face across the flat region, for the one holding p.
   std::size_t search_limit = 4096;
+  // How an edge is split at a point on it (default: split_edge). An element hierarchy
+  // that must follow every split (ElementHierarchy::split_at) passes its own; a point
+  // inside a face is then made by two edge splits (through the corner opposite the
+  // face's longest edge, then along the new edge), not by a 1 -> 3 split of the face.
+  std::function<EdgeSplit(OpenMesh::EdgeHandle, const Vec3d&)> split;
 };
 
 struct InsertedLine {

@@ -255,6 +255,17 @@ SplitCounts ElementHierarchy::refine(ElementId e) {
   return bisector.bisect(elements_[e].face);
 }
 
+EdgeSplit ElementHierarchy::split_at(OpenMesh::EdgeHandle e, const Vec3d& x) {
+  TriMesh& mesh = scene_.mesh();
+  // (lines may have been added since the hierarchy was made)
+  if (!line_width_.is_valid()) mesh.get_property_handle(line_width_, SceneMesh::kLineWidthProperty);
+  const EdgeSplit cut = split_edge(mesh, e, x, line_width_);
+  for (int s = 0; s < 2; ++s)
+    if (cut.kept[s].is_valid())
+      on_bisect(cut.kept[s], cut.added[s], corners_of(mesh, cut.kept[s]), corners_of(mesh, cut.added[s]));
+  return cut;
+}
+
 void ElementHierarchy::leaves(ElementId e, std::vector<ElementId>& out) const {
   std::vector<ElementId> stack{e};
   while (!stack.empty()) {

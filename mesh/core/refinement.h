@@ -129,6 +129,11 @@ class ElementHierarchy {
   // Bisects leaf `e` (and, first, whatever the closure needs). A no-op on interior
   // elements.
   SplitCounts refine(ElementId e);
+  // Splits edge e at x, a point on it (split_edge: 2 -> 4, or 1 -> 2 on a border), each
+  // face beside it an element split in two as a bisection is, whatever the edge's length
+  // and x's place on it (a line inserted into the refined mesh: line_insertion.h). No
+  // minimum area is asked for.
+  EdgeSplit split_at(OpenMesh::EdgeHandle e, const Vec3d& x);
 
   const Element& element(ElementId e) const { return elements_[e]; }
   std::size_t element_count() const { return elements_.size(); }

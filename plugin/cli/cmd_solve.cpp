@@ -72,7 +72,8 @@ struct SolveCliOptions {
   double memory_budget_mb = -1;  // -1: half of the memory available at the start
   bool no_pushdown_ambient = false;
   bool clusters = true;
-  bool shadow_outlines = true;  // hard shadows' outlines as mesh edges (radiosity/sources/shadow_outlines.h)
+  bool shadow_outlines = false;  // hard shadows' outlines as mesh edges (radiosity/sources/shadow_outlines.h)
+  bool direct_in_mesh = false;   // RefineSettings::exact_direct off
   double overshoot = -1;  // -1: the method's (radiosity/solver/settings.h)
   double cumulated_gradient = -1, current_gradient = -1, current_ratio = -1, pushdown = -1, pushdown_floor = -1;  // -1: default
   double exposure = 0;    // 0: automatic
@@ -162,6 +163,7 @@ int run_solve(SolveCliOptions& options) {
   request.settings.clusters = options.clusters;
   request.settings.overshoot = options.overshoot;
   request.shadow_outlines = options.shadow_outlines;
+  refine.exact_direct = !options.direct_in_mesh;
   request.solve = options.solve;
   // Load, repair, light sources, settings, patches.
   rad::PreparedScene prepared = rad::prepare_scene(request);
@@ -184,6 +186,9 @@ int run_solve(SolveCliOptions& options) {
   };
   prepared.solve.on_busy = [&](std::size_t points, double seconds) {
     progress.busy(points, seconds, g_stop_requested.load());
+  };
+  prepared.solve.on_pass = [&](const char* pass, std::size_t done, std::size_t total, double seconds) {
+    progress.pass(pass, done, total, seconds, g_stop_requested.load());
   };
   options.solve = prepared.solve;  // as the settings left it: the report gives it
   g_stop_requested = false;
@@ -456,9 +461,14 @@ Command add_solve_command(CLI::App& app) {
   command->add_flag("!--flat-senders", options->solve.shaped_senders,
                    "Shoot every patch's unshot radiosity evenly (Cohen et al. 1988) instead of shaped by its "
                    "corners and a quarter grid of points on it");
-  command->add_flag("!--no-shadow-outlines", options->shadow_outlines,
-                    "Do not make the outlines of hard shadows (from luminaires small for their distance, and the "
-                    "sun) mesh edges before lighting; shadows then follow the elements' edges (a sawtooth)");
+  command->add_flag("--shadow-outlines,!--no-shadow-outlines", options->shadow_outlines,
+                    "Make the outlines of hard shadows (from luminaires small for their distance, and the sun) mesh "
+                    "edges, drawn into the mesh after the shots (before them with --direct-in-mesh). Off (the "
+                    "default): a shadow's edge is refined to 2% of its distance from the light");
+  command->add_flag("--direct-in-mesh", options->direct_in_mesh,
+                    "Refine the element hierarchy for the light of luminaires and the sun in their own shots and keep "
+                    "it in the element values, instead of evaluating it exactly at every written vertex and refining "
+                    "the written mesh for it after the shots (for comparison; much slower on buildings)");
   command->add_flag("!--no-clusters", options->clusters,
                     "Solve every small patch on its own instead of grouping small patches (frames, handles, "
                     "furniture parts) into face clusters that send and receive light as one");

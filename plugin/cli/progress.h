@@ -68,6 +68,18 @@ class Progress {
     std::fflush(stderr);
     drawn_ = drawn_ || terminal_;
   }
+  // During a pass after the shots (SolveOptions::on_pass; from a worker thread, never
+  // at the same time as update or busy): what it is and how far, so that no phase is
+  // silent (also when not on a terminal).
+  void pass(const char* name, std::size_t done, std::size_t total, double seconds, bool stop_requested) {
+    if (quiet_) return;
+    const std::string stop = stop_requested ? "; stopping: cutting it short, then writing the solution" : "";
+    const double percent = total > 0 ? 100.0 * std::min(done, total) / total : 100.0;
+    std::fprintf(stderr, "%sprogress: %s: %zu of %zu (%.0f%%), %.0f s%s%s", terminal_ ? "\r  " : "", name, done, total,
+                 percent, seconds, stop.c_str(), terminal_ ? "   " : "\n");
+    std::fflush(stderr);
+    drawn_ = drawn_ || terminal_;
+  }
   void finish() {
     if (drawn_) std::fprintf(stderr, "\n");
   }

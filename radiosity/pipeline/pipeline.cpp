@@ -181,7 +181,12 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
 
   // 4. Patches, the outlines of hard shadows, the element hierarchy.
   p.patching = make_patches(mesh, patch_size);
-  if (request.shadow_outlines && !request.coefficients && !p.luminaires.empty()) {
+  // With exact direct light, the outlines are drawn after the shots (the solver's
+  // SolveOptions::outline_patch_size), not made into patches here.
+  const bool outlines_after = p.refine.exact_direct && p.refine.method == Method::dynamic;
+  if (request.shadow_outlines && !request.coefficients && !p.luminaires.empty() && outlines_after)
+    p.solve.outline_patch_size = patch_size;
+  if (request.shadow_outlines && !request.coefficients && !p.luminaires.empty() && !outlines_after) {
     p.outlines = insert_shadow_outlines(mesh, p.luminaires, shadow_outline_options(patch_size));
     if (p.outlines.outlines > 0)
       spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
@@ -218,6 +223,14 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
         coefficient_channels(*s.channel_visibility, p.luminaires.front(), *c->indirect, *c->suns, c->options));
   }
   s.report = s.solver->run();
+  if (p.solve.outline_patch_size > 0) {
+    p.outlines = s.solver->outline_report();
+    if (p.outlines.outlines > 0)
+      spdlog::info("shadow outlines: {} straight pieces from {} silhouette edges made into {} lines ({} vertices) in "
+                   "{:.2f} s",
+                   p.outlines.outlines, p.outlines.silhouette_edges, p.outlines.lines, p.outlines.vertices_added,
+                   p.outlines.seconds);
+  }
   s.output = s.solver->output();
   if (lit || !p.grids.empty() || !p.light_scenes.empty())
     s.lit = std::make_unique<LitScene>(lit_scene(*p.scene.mesh, s.output.split, s.output.radiosity, p.luminaires,

@@ -77,7 +77,13 @@ struct SceneRequest {
   // set the quality's levels and push-down thresholds on it (settings.h).
   RefineSettings refine = dynamic_refine();
   SettingsRequest settings;  // the quality, and what the host sets of what is chosen from the model
-  bool shadow_outlines = true;   // hard shadows' outlines as mesh edges (shadow_outlines.h)
+  // Hard shadows' outlines as mesh edges (shadow_outlines.h): with exact direct light
+  // (RefineSettings::exact_direct, the default) drawn after the shots, before them
+  // otherwise. Off by default: the display's refinement draws a shadow's edge to 2% of
+  // its distance from the light, and on one storey of the generated office the outlines
+  // doubled the written mesh for pictures we could not tell apart
+  // (bench/results/whole_buildings.md).
+  bool shadow_outlines = false;
   Units units = Units::automatic;
   // Stop rules, threads, seed, display options; on_shot and should_stop are the host's
   // (on_shot is wired to `on_shot` below when that is set).

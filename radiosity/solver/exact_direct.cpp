@@ -110,7 +110,9 @@ void Solver::compute_receiver_direct(std::vector<std::uint32_t> wanted) {
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
   wanted.erase(std::remove_if(wanted.begin(), wanted.end(), [&](std::uint32_t r) { return receiver_direct_[r].seen >= 0; }),
                wanted.end());
+  PassProgress progress(options_, "direct light at the vertices", wanted.size());
   parallel_for_index(wanted.size(), 64, [&](std::size_t i) {
+    progress.add(1);
     thread_local std::vector<std::uint32_t> lights;
     const std::uint32_t r = wanted[i];
     receiver_luminaires(r, lights);
@@ -215,10 +217,20 @@ void Solver::refine_for_display() {
     bool& flag;
     ~Reset() { flag = false; }
   } reset{refining_for_display_};
+  if (refines && options_.outline_patch_size > 0) {
+    draw_outlines();
+    todo.clear();
+    for (ElementId e = 0; e < hierarchy_.element_count(); ++e) {
+      const Element& el = hierarchy_.element(e);
+      if (el.is_leaf() && directly_lit(el.patch)) todo.push_back(e);
+    }
+  }
+  PassProgress progress(options_, "refining the mesh for direct light (elements looked at)", todo.size());
   while (!todo.empty()) {
     look_at(todo);
     split.assign(todo.size(), 0);
     parallel_for_index(todo.size(), 64, [&](std::size_t i) {
+      progress.add(1);
       const ElementId e = todo[i];
       const Element& el = hierarchy_.element(e);
       const Patch& patch = patches_[el.patch];
@@ -240,7 +252,7 @@ void Solver::refine_for_display() {
     bool stopped = false;
     for (std::size_t i = 0; i < todo.size() && !stopped; ++i) {
       if (!split[i]) continue;
-      stopped = !refinement_allowed() || (options_.should_stop && options_.should_stop());
+      stopped = !refinement_allowed() || progress.stop();
       if (!stopped) hierarchy_.refine(todo[i]);
     }
     initialise_new_elements();
@@ -248,6 +260,7 @@ void Solver::refine_for_display() {
     for (ElementId e = static_cast<ElementId>(first); e < hierarchy_.element_count(); ++e)
       if (hierarchy_.element(e).is_leaf() && directly_lit(hierarchy_.element(e).patch)) todo.push_back(e);
     if (stopped) break;
+    progress.grow(todo.size());
   }
   // Leaves a stop left not yet looked at: their gap.
   if (!todo.empty()) {
@@ -255,6 +268,30 @@ void Solver::refine_for_display() {
     parallel_for_index(todo.size(), 64,
                        [&](std::size_t i) { display_gap_[todo[i]] = static_cast<float>(direct_display_error(todo[i]).gap); });
   }
+}
+
+void Solver::draw_outlines() {
+  // Per luminaire, the edges of the leaves of the patches it lit (sorted, once each).
+  std::vector<std::vector<OpenMesh::EdgeHandle>> edges(luminaires_.size());
+  const TriMesh& mesh = scene_.mesh();
+  std::vector<ElementId> leaves;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    if (!directly_lit(p)) continue;
+    leaves.clear();
+    hierarchy_.leaves(hierarchy_.patch_root(p), leaves);
+    for (std::uint32_t n = lit_first_[p]; n < lit_first_[p + 1]; ++n)
+      for (const ElementId e : leaves)
+        for (const auto edge : mesh.fe_range(hierarchy_.element(e).face)) edges[lit_luminaires_[n]].push_back(edge);
+  }
+  for (auto& list : edges) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  ShadowOutlineOptions o = shadow_outline_options(options_.outline_patch_size);
+  o.split = [this](OpenMesh::EdgeHandle e, const Vec3d& x) { return hierarchy_.split_at(e, x); };
+  o.candidate_edges = &edges;
+  outline_report_ = insert_shadow_outlines(scene_, luminaires_, o);
+  initialise_new_elements();
 }
 
 double Solver::display_gap(ElementId e) const {

@@ -109,8 +109,11 @@ std::vector<Rgb> Solver::near_unshot(const std::vector<char>& wanted) const {
   };
   build(build, 0, static_cast<std::uint32_t>(tree.order.size()));
 
+  // Cut short by a stop (the receivers not reached keep the ambient term alone).
+  PassProgress progress(options_, "unshot light of near patches (receivers)", receivers_.size());
   tbb::parallel_for(std::size_t(0), receivers_.size(), [&](std::size_t id) {
-    if (!wanted[id]) return;
+    progress.add(1);
+    if (!wanted[id] || progress.stop()) return;
     const Receiver& r = receivers_[id];
     const Vec3d& n = patches_[r.patch].normal;
     Rgb sum;

@@ -56,6 +56,13 @@ struct SolveOptions {
   // centroid (radiosity/solver/direct_gap.cpp): a shadow inside an element whose corners are
   // lit, which the hierarchical surplus does not see. False: the surplus alone.
   bool direct_check = true;
+  // Above 0: the outlines of hard shadows (radiosity/sources/shadow_outlines.h, with its
+  // options for patches of this size) are drawn into the mesh after the shots, before
+  // its refinement for display, through the element hierarchy (RefineSettings::
+  // exact_direct and the dynamic method only). Drawn before the solve instead, their
+  // pieces became patches of their own: one storey of the generated office went from
+  // 229,000 patches to 1.58 million. 0: none (the host may have drawn them before).
+  double outline_patch_size = 0;
   // Over-relaxation of each shot (Gortler, Cohen & Slusallek 1993; Feda & Purgathofer
   // 1992 call it overshooting): the sender shoots `overshoot` times its unshot
   // radiosity and keeps the rest, 1 - overshoot of it, which is negative for values
@@ -128,6 +135,12 @@ struct SolveOptions {
   std::function<bool()> should_stop;
   // Called after every shot.
   std::function<void(std::size_t iteration, double unshot_fraction)> on_shot;
+  // Called during the passes after the shots (the display's refinement, the receivers'
+  // direct light, the near-unshot correction), at most every 2 s and when each ends,
+  // from any thread: the pass's name, how much of it is done and of how much (units of
+  // its own) and its seconds. Such a pass took minutes on a building and said nothing.
+  // should_stop cuts the display's refinement and the near-unshot correction short.
+  std::function<void(const char* pass, std::size_t done, std::size_t total, double seconds)> on_pass;
   // Called during a shot, at most every 2 s, from any thread: how many receiving points
   // the shot has computed so far and its seconds. A sky's first shot on a building can
   // take minutes (about a thousand rays per point); this is its sign of life. A stop

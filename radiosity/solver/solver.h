@@ -21,6 +21,7 @@
 #include "radiosity/transfer/form_factor.h"
 #include "radiosity/transfer/grow_array.h"
 #include "radiosity/sources/luminaire.h"
+#include "radiosity/sources/shadow_outlines.h"
 #include "radiosity/solver/coefficient_channels.h"
 #include "radiosity/solver/oracle.h"
 #include "radiosity/solver/patch_state.h"
@@ -98,6 +99,8 @@ class Solver {
   const EnergyBalance& energy() const { return report_.energy; }
   double unshot_fraction() const;
   const SolveReport& report() const { return report_; }
+  // The shadow outlines drawn after the shots (SolveOptions::outline_patch_size).
+  const ShadowOutlineReport& outline_report() const { return outline_report_; }
   // The sources as solved: daylight's flux (what reached the surfaces) filled in.
   const std::vector<Luminaire>& luminaires() const { return luminaires_; }
   // For benchmarks: see Visibility::record_rays (single thread only).
@@ -151,6 +154,26 @@ class Solver {
   // A sign of life during a long shot (SolveOptions::on_busy): counts the receiving points
   // computed and calls on_busy when 2 s have passed since the last call.
   void beat();
+  // The progress of a pass after the shots (SolveOptions::on_pass): add() from any
+  // thread; the call comes at most every 2 s from one of them, and once at the end.
+  class PassProgress {
+   public:
+    PassProgress(const SolveOptions& options, const char* name, std::size_t total);
+    ~PassProgress();
+    void add(std::size_t done);
+    void grow(std::size_t more) { total_ += more; }  // the pass found more to do
+    // should_stop, read at most every 50 ms (a signal handler's flag is cheap to read,
+    // a host's callback need not be).
+    bool stop();
+
+   private:
+    const SolveOptions& options_;
+    const char* name_;
+    std::atomic<std::size_t> done_{0}, total_;
+    std::chrono::steady_clock::time_point start_;
+    std::atomic<std::int64_t> next_{0}, next_stop_check_{0};
+    std::atomic<bool> stopped_{false};
+  };
   std::atomic<std::size_t> shot_points_{0};
   std::chrono::steady_clock::time_point shot_start_;
   std::atomic<std::int64_t> next_beat_{0};  // steady clock, nanoseconds
@@ -530,6 +553,10 @@ class Solver {
   // After the shots: refines where direct light needs it for display (see above).
   void refine_for_display();
   std::vector<float> display_gap_;  // per element: direct_display_error() of a leaf
+  // Draws hard shadows' outlines (SolveOptions::outline_patch_size) through the hierarchy,
+  // each luminaire's looked for on the surfaces it lit.
+  void draw_outlines();
+  ShadowOutlineReport outline_report_;
   bool refining_for_display_ = false;  // new elements interpolate their parent alone
   double display_gap(ElementId e) const;  // weighted as the mesh error takes it
   // Patch p's direct light (luminance, reflected) at a node of its quarter grid, node

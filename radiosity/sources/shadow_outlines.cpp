@@ -4,6 +4,8 @@
 #include "radiosity/sources/daylight.h"
 #include "radiosity/transfer/visibility.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +22,7 @@ struct Sender {
   Vec3d position{0, 0, 0};
   Vec3d towards{0, 0, 1};  // unit, towards the sun (directional)
   double opening = 0;      // the luminaire's opening size (0: a point)
+  std::size_t index = 0;   // in the luminaires given
 };
 
 // Where the ray from the sender past an edge point lands.
@@ -161,10 +164,12 @@ ShadowOutlineReport insert_shadow_outlines(SceneMesh& scene, const std::vector<L
   ShadowOutlineReport report;
   if (!(options.half_width > 0) || !(options.spacing > 0)) return report;
   std::vector<Sender> senders;
-  for (const Luminaire& l : luminaires) {
+  for (std::size_t index = 0; index < luminaires.size(); ++index) {
+    const Luminaire& l = luminaires[index];
     if (l.kind == Luminaire::Kind::sky) continue;
     Sender s;
     s.luminaire = &l;
+    s.index = index;
     if (l.kind == Luminaire::Kind::sun) {
       if (!l.daylight) continue;
       s.directional = true;
@@ -178,19 +183,32 @@ ShadowOutlineReport insert_shadow_outlines(SceneMesh& scene, const std::vector<L
   report.senders = senders.size();
   if (senders.empty()) return report;
 
-  // All outlines are found on the mesh as it is, then inserted.
+  // All outlines are found on the mesh as it is, then inserted. Each sender on its own
+  // (in parallel), joined in the senders' order.
   std::vector<OutlineFinder::Outline> found;
   {
     const Visibility visibility(scene);
     const OutlineFinder finder(scene, visibility, options);
     const TriMesh& mesh = scene.mesh();
-    for (const Sender& s : senders)
-      for (auto e : mesh.edges()) {
-        if (!finder.silhouette(s, e)) continue;
-        ++report.silhouette_edges;
+    std::vector<std::vector<OutlineFinder::Outline>> per_sender(senders.size());
+    std::vector<std::size_t> silhouettes(senders.size(), 0);
+    tbb::parallel_for(std::size_t(0), senders.size(), [&](std::size_t k) {
+      const Sender& s = senders[k];
+      auto look = [&](OpenMesh::EdgeHandle e) {
+        if (!finder.silhouette(s, e)) return;
+        ++silhouettes[k];
         const OpenMesh::HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-        finder.outlines(s, mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)), found);
-      }
+        finder.outlines(s, mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)), per_sender[k]);
+      };
+      if (options.candidate_edges)
+        for (const OpenMesh::EdgeHandle e : (*options.candidate_edges)[s.index]) look(e);
+      else
+        for (auto e : mesh.edges()) look(e);
+    });
+    for (std::size_t k = 0; k < senders.size(); ++k) {
+      report.silhouette_edges += silhouettes[k];
+      found.insert(found.end(), per_sender[k].begin(), per_sender[k].end());
+    }
   }
   report.outlines = found.size();
   for (const OutlineFinder::Outline& o : found) {
@@ -200,6 +218,7 @@ ShadowOutlineReport insert_shadow_outlines(SceneMesh& scene, const std::vector<L
     LineOptions line;
     line.width = static_cast<float>(2 * o.half_width);
     line.snap = 0.25 * o.half_width;
+    line.split = options.split;
     for (const double side : {-1.0, 1.0}) {
       // Each line runs the outline's length and a half width beyond its ends, so that
       // the lines of two outlines meeting at a corner cross there.
@@ -212,7 +231,7 @@ ShadowOutlineReport insert_shadow_outlines(SceneMesh& scene, const std::vector<L
       report.vertices_added += ahead.vertices_added + back.vertices_added;
     }
   }
-  report.flips = flip_beside_lines(scene);
+  if (!options.split) report.flips = flip_beside_lines(scene);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

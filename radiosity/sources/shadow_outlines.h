@@ -22,10 +22,12 @@
 // bisection.
 #pragma once
 
+#include "mesh/core/refinement.h"
 #include "mesh/core/scene_mesh.h"
 #include "radiosity/sources/luminaire.h"
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace dynrad::rad {
@@ -47,6 +49,14 @@ struct ShadowOutlineOptions {
   double shortest = 0;
   // Bisection steps for a run's ends: each halves the gap between samples.
   int bisections = 12;
+  // How the lines' edges are split (LineOptions::split): an element hierarchy that must
+  // follow every split passes its own (the outlines are then drawn into a refined mesh
+  // after a solve, and no edge is flipped: a flip is no split an element tree can hold).
+  std::function<EdgeSplit(OpenMesh::EdgeHandle, const Vec3d&)> split;
+  // Per luminaire (in the order given), the edges whose silhouettes are looked at; null:
+  // every edge of the mesh for every luminaire. A solve knows which surfaces each
+  // luminaire lit, and an occluder's edge in its light lies on one of them.
+  const std::vector<std::vector<OpenMesh::EdgeHandle>>* candidate_edges = nullptr;
 };
 
 struct ShadowOutlineReport {
@@ -63,7 +73,9 @@ struct ShadowOutlineReport {
 ShadowOutlineOptions shadow_outline_options(double patch_size);
 
 // Finds the outlines of hard shadows cast by `luminaires` (all but the sky) and inserts
-// them into `scene`'s mesh. Call before patching, on the mesh the solver will light.
+// them into `scene`'s mesh: before patching, on the mesh the solver will light, or after
+// a solve through its element hierarchy (ShadowOutlineOptions::split). The luminaires
+// are looked at in parallel; the result does not depend on the number of threads.
 ShadowOutlineReport insert_shadow_outlines(SceneMesh& scene, const std::vector<Luminaire>& luminaires,
                                            const ShadowOutlineOptions& options);
 
