@@ -444,6 +444,14 @@ class Solver {
   // clusters (in index order), through the tree's tests.
   void visible_receivers(std::vector<std::uint32_t>& patches, std::vector<std::uint32_t>& clusters);
   ReceiverTree::Seen test_node(std::uint32_t node) const;
+  // The receivers (their places in tree_.order(), sorted) that kSenderRaySide^2 of the
+  // current sender's own rays meet first: cosine-weighted from points on it (a
+  // luminaire: stratified over the sphere where it sends light). The tree never culls a
+  // node that holds one (ReceiverTree::visit): a room seen through a door is a few
+  // percent of a sender's view, which these rays see and a node's test points can miss.
+  void sender_ray_hits(std::vector<std::uint32_t>& positions) const;
+  static constexpr int kSenderRaySide = 16;
+  std::vector<std::uint32_t> kept_positions_;
   bool sender_near(const Bounds& box) const;
   // What the cluster does in this shot: 0 culled, 1 received as one, 2 opened.
   int cluster_verdict(std::uint32_t cluster) const;

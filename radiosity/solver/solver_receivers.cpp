@@ -121,6 +121,68 @@ ReceiverTree::Seen Solver::test_node(std::uint32_t node) const {
                                                                        : ReceiverTree::Seen::partly;
 }
 
+void Solver::sender_ray_hits(std::vector<std::uint32_t>& positions) const {
+  // Rows of strata, each with a seed of its own (the same hits for any thread count).
+  const int side = kSenderRaySide;
+  std::vector<std::vector<std::uint32_t>> rows(side);
+  const bool luminaire_sender = is_luminaire(sender_);
+  const std::uint64_t seed = mix(options_.seed ^ mix(0x5EE5000000000ull + sender_) ^ mix(report_.iterations + 1));
+  const double offset = 1e-6 * scene_.bounds().diagonal();
+  tbb::parallel_for(0, side, [&](int i) {
+    Rng rng{mix(seed ^ mix(static_cast<std::uint64_t>(i) + 1))};
+    for (int j = 0; j < side; ++j) {
+      const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
+      Vec3d from, dir;
+      if (luminaire_sender) {
+        // Directions stratified over the sphere; the dark ones are skipped.
+        const Luminaire& l = luminaire(sender_);
+        const double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * M_PI * u2;
+        dir = l.nadir * z + l.c0 * (r * std::cos(phi)) + l.c90 * (r * std::sin(phi));
+        if (!(l.intensity_towards(dir) > 0)) continue;
+        from = l.position;
+      } else {
+        Vec3d n;
+        if (is_cluster(sender_)) {
+          if (sender_parts_.empty()) return;
+          const double target = rng.uniform();
+          const std::size_t k = pick_by_weight(sender_parts_.size(), target,
+                                               [&](std::size_t m) { return std::abs(sender_parts_[m].share); });
+          from = sender_parts_[k].point;
+          n = sender_parts_[k].normal;
+        } else {
+          const double a = rng.uniform(), b = rng.uniform();
+          from = sender_members_.empty() ? point_on_triangle(patches_[sender_].corners, a, b)
+                                         : group_sender_point(rng.uniform(), a, b);
+          n = patches_[sender_].normal;
+        }
+        // Cosine-weighted about n.
+        const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
+        const Vec3d b = OpenMesh::cross(n, t);
+        const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+        dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+        from += n * offset;
+      }
+      const Visibility::Intersection hit = visibility_->intersect(from, dir);
+      if (!hit.hit || !hit.front) continue;
+      const std::uint32_t p = hierarchy_.element(hierarchy_.element_of(FaceHandle(hit.face))).patch;
+      const std::uint32_t cluster = clusters_.clusters.empty() ? FaceClusters::kNone : clusters_.cluster_of(p);
+      std::uint32_t item;
+      if (cluster != FaceClusters::kNone) {
+        item = static_cast<std::uint32_t>(standalone_.size()) + cluster;
+      } else {
+        const auto at = std::lower_bound(standalone_.begin(), standalone_.end(), p);
+        if (at == standalone_.end() || *at != p) continue;
+        item = static_cast<std::uint32_t>(at - standalone_.begin());
+      }
+      rows[i].push_back(tree_.position(item));
+    }
+  });
+  positions.clear();
+  for (const auto& row : rows) positions.insert(positions.end(), row.begin(), row.end());
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+}
+
 void Solver::visible_receivers(std::vector<std::uint32_t>& patches, std::vector<std::uint32_t>& clusters) {
   patches.clear();
   clusters.clear();
@@ -131,8 +193,10 @@ void Solver::visible_receivers(std::vector<std::uint32_t>& patches, std::vector<
     for (std::uint32_t c = 0; c < clusters_.clusters.size(); ++c) clusters.push_back(c);
     return;
   }
+  sender_ray_hits(kept_positions_);
   const ReceiverTree::Visit visit = tree_.visit([this](const Bounds& box) { return sender_near(box); },
-                                                [this](std::uint32_t node) { return test_node(node); });
+                                                [this](std::uint32_t node) { return test_node(node); },
+                                                &kept_positions_);
   for (std::uint32_t item : visit.items) {
     if (item < standalone_.size())
       patches.push_back(standalone_[item]);

@@ -16,6 +16,8 @@ ReceiverTree::ReceiverTree(const std::vector<Item>& items) {
   nodes_.reserve(2 * items.size() / kLeafSize + 2);
   build(ids, 0, static_cast<std::uint32_t>(ids.size()), items, centres);
   order_ = std::move(ids);
+  position_.resize(order_.size());
+  for (std::uint32_t k = 0; k < order_.size(); ++k) position_[order_[k]] = k;
   for (Node& n : nodes_)
     if (n.count >= kMinTested) add_samples(n, items);
 }
@@ -71,7 +73,8 @@ void ReceiverTree::add_samples(Node& node, const std::vector<Item>& items) {
 }
 
 ReceiverTree::Visit ReceiverTree::visit(const std::function<bool(const Bounds&)>& near,
-                                        const std::function<Seen(std::uint32_t)>& test) const {
+                                        const std::function<Seen(std::uint32_t)>& test,
+                                        const std::vector<std::uint32_t>* kept) const {
   Visit out;
   if (nodes_.empty()) return out;
   std::vector<std::uint32_t> level{0}, next;
@@ -81,6 +84,10 @@ ReceiverTree::Visit ReceiverTree::visit(const std::function<bool(const Bounds&)>
     parallel_for_index(level.size(), 4, [&](std::size_t k) {
       const Node& n = nodes_[level[k]];
       if (n.sample_count > 0 && !near(n.bounds)) seen[k] = test(level[k]);
+      if (seen[k] == Seen::hidden && kept) {
+        const auto at = std::lower_bound(kept->begin(), kept->end(), n.first);
+        if (at != kept->end() && *at < n.first + n.count) seen[k] = Seen::partly;
+      }
     });
     // In level order: the items come out in the same order for any number of threads.
     next.clear();

@@ -15,9 +15,11 @@
 //
 // A test can miss what a node shows through a gap narrower than its points are apart
 // (a node of which a twentieth is seen, through a door, is culled by 32 points with a
-// chance of about a fifth): the shot's power then goes to the receivers that were
-// kept (the shot's normalisation, see shoot.cpp), so energy is kept and the error is
-// local to a node that receives little of this sender anyway.
+// chance of about a fifth). The shot's power then went to the receivers that were kept
+// (the shot's normalisation, see shoot.cpp), and that was not local: in nine offices
+// joined by doors, path-traced, the middle office's indirect light came out 4.3% low and
+// the corners' 1.2-1.5% (all about 1.4% with no culling). So the sender's own rays say
+// what it sees too (Visit's `kept`): a node one of them meets is not culled.
 #pragma once
 
 #include "mesh/core/types.h"
@@ -70,8 +72,13 @@ class ReceiverTree {
     std::vector<std::uint32_t> items;
     std::size_t culled_nodes = 0, culled_items = 0, tests = 0;
   };
-  Visit visit(const std::function<bool(const Bounds&)>& near,
-              const std::function<Seen(std::uint32_t node)>& test) const;
+  // `kept`, when given: positions in order() (sorted) of items the sender is known to
+  // see (its own rays met them): a node holding one is never culled, whatever its test
+  // says (a room seen through a door, which a node's points may all miss).
+  Visit visit(const std::function<bool(const Bounds&)>& near, const std::function<Seen(std::uint32_t node)>& test,
+              const std::vector<std::uint32_t>* kept = nullptr) const;
+  // Where item i stands in order().
+  std::uint32_t position(std::uint32_t item) const { return position_[item]; }
 
  private:
   std::uint32_t build(std::vector<std::uint32_t>& ids, std::uint32_t begin, std::uint32_t end,
@@ -80,6 +87,7 @@ class ReceiverTree {
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;
   std::vector<Piece> samples_;
+  std::vector<std::uint32_t> position_;  // per item, its index in order_
 };
 
 }  // namespace dynrad::rad
