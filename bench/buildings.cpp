@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,6 +76,50 @@ double exponent(const std::vector<Result>& results, double Result::*y) {
   return d > 0 ? (n * sxy - sx * sy) / d : 0.0;
 }
 
+// Each office's Eavg on one storey against the path-traced reference (mesh_reference
+// on the cleaned storey; tests/data/office_storey_reference.txt says how it was made):
+// the goal is every office within 3%.
+void compare_offices(const std::string& name) {
+  std::ifstream in(DYNRAD_TEST_DATA_DIR "/office_storey_reference.txt");
+  std::vector<std::array<double, 3>> reference;  // x, y, E
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::array<double, 3> p{};
+    double z = 0;
+    if (fields >> p[0] >> p[1] >> z >> p[2]) reference.push_back(p);
+  }
+  std::size_t next = 0;
+  double worst = 0, sum = 0;
+  int rooms = 0;
+  std::printf("\n%s against the path-traced reference, each office's Eavg:", name.c_str());
+  for (int room = 1;; ++room) {
+    std::ifstream csv(kWork / (name + "_grid_s1_r" + std::to_string(room) + ".csv"));
+    if (!csv) break;
+    std::getline(csv, line);  // header
+    double solved = 0, traced = 0;
+    while (std::getline(csv, line)) {
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream fields(line);
+      double x = 0, y = 0, z = 0, e = 0;
+      if (!(fields >> x >> y >> z >> e)) continue;
+      if (next >= reference.size() || std::abs(reference[next][0] - x) > 1e-3 || std::abs(reference[next][1] - y) > 1e-3) {
+        std::printf(" the grids are not the reference's points: not compared\n");
+        return;
+      }
+      solved += e;
+      traced += reference[next++][2];
+    }
+    const double d = solved / traced - 1;
+    std::printf(" %+.2f%%", 100 * d);
+    worst = std::max(worst, std::abs(d));
+    sum += std::abs(d);
+    ++rooms;
+  }
+  if (rooms > 0) std::printf("\nworst office %.2f%%, mean %.2f%% (goal: every office within 3%%)\n", 100 * worst, 100 * sum / rooms);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -119,6 +165,19 @@ int main(int argc, char** argv) {
   };
   for (const Result& r : offices) row(r);
   row(storey);
+  // Where each run's time and memory went (the report's phases).
+  for (const Result* r : std::vector<const Result*>{offices.empty() ? &storey : &offices.front(), &storey}) {
+    if (!r->report.contains("phases")) continue;
+    std::printf("\n%s, by phase:\n\n| phase | seconds | resident MiB at its end | peak MiB so far |\n|---|---|---|---|\n",
+                r->name.c_str());
+    for (const nlohmann::json& p : r->report["phases"])
+      std::printf("| %s | %.1f | %.0f | %.0f |\n", p["name"].get<std::string>().c_str(), p["seconds"].get<double>(),
+                  p["resident_mib"].get<double>(), p["peak_mib"].get<double>());
+  }
+  // One storey against its path-traced reference (tests/data/office_storey_reference.txt):
+  // each office's Eavg.
+  for (std::size_t k = 0; k < storeys.size(); ++k)
+    if (storeys[k] == 1) compare_offices(offices[k].name);
   if (offices.size() >= 2) {
     std::printf("\nexponent of wall seconds against input triangles: %.2f (goal: at most 1.2)\n",
                 exponent(offices, &Result::seconds));

@@ -192,16 +192,23 @@ int run_solve(SolveCliOptions& options) {
   };
   options.solve = prepared.solve;  // as the settings left it: the report gives it
   g_stop_requested = false;
+  // Until the files are written: a first Ctrl-C or SIGTERM stops the shots, cuts the
+  // passes after them short and skips what is left to skip (the decimation); a second
+  // one ends the program at once.
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  struct DefaultSignals {
+    ~DefaultSignals() {
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
+    }
+  } restore_signals;
   const bool glb = std::filesystem::path(options.output).extension() == ".glb";
   // Grids, views, the preview, the glTF's cameras and the designer's checks gather from
   // or render the lit mesh (radiosity/analysis/lit_scene.h).
   rad::SolvedScene solved = rad::solve_scene(
       prepared, !cameras.empty() || automatic_views || !options.preview.empty() || glb || design);
   progress.finish();
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
   rad::SolveReport& report = solved.report;
   // Output: per-vertex radiosity, display colours through an exposure.
   rad::Solver::Output& result = solved.output;
@@ -277,8 +284,14 @@ int run_solve(SolveCliOptions& options) {
                                detail::srgb_to_linear(shown[2] / 255.0));
       }
   }
+  if (!found_views.empty() || chosen_view) prepared.phases.done("views");
   std::size_t written_vertices = result.split.size(), written_triangles = mesh.face_count();
-  if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles) {
+  if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles && g_stop_requested.load())
+    spdlog::warn("interrupted: the lit mesh is written as it is, {} triangles, without decimating it for viewers",
+                 mesh.face_count());
+  if (options.max_triangles > 0 && mesh.face_count() > options.max_triangles && !g_stop_requested.load()) {
+    spdlog::info("decimating the lit mesh for viewers: {} triangles, to at most {}", mesh.face_count(),
+                 options.max_triangles);
     // Too fine for a viewer: decimated within a colour bound (mesh/io/lit_decimate.h).
     LitDecimateOptions decimate;
     decimate.max_triangles = options.max_triangles;
@@ -290,12 +303,14 @@ int run_solve(SolveCliOptions& options) {
                  d.reached_target ? "" : fmt::format(" (the colour bound allows no fewer than the {} asked for)",
                                                      options.max_triangles),
                  d.worst_colour_error, 100 * d.worst_error_fraction, d.seconds);
+    prepared.phases.add("decimation", d.seconds);
     write_mesh_with_values(options.output, *lighter.scene, lighter.split, lighter.values, write);
     written_vertices = lighter.split.size();
     written_triangles = lighter.scene->face_count();
   } else {
     write_mesh_with_values(options.output, mesh, result.split, values, write);
   }
+  prepared.phases.done("writing the lit mesh");
 
   if (!options.preview.empty()) {
     const int w = options.preview_width, h = options.preview_width * 3 / 4;
@@ -310,6 +325,7 @@ int run_solve(SolveCliOptions& options) {
   const std::vector<rad::View> views = automatic_views ? rad::merge_views(cameras, found_views) : cameras;
   std::vector<ViewPictures> pictures;
   if (!views.empty()) pictures = write_views(grid_prefix, *scene_lit, views, exposure);
+  prepared.phases.done("grid files, preview and views");
   const auto& e = report.energy;
   spdlog::info("{} shots in {:.2f} s ({}), unshot {:.3f}%, estimated error {:.2f}% ({:.2f}% unshot light, {:.2f}% "
                "mesh, {:.2f}% shadows inside elements), {} visibility rays; exposure {:.4g}",

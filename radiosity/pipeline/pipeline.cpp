@@ -156,6 +156,7 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
     spdlog::info("simplified flat regions: {} -> {} triangles in {:.2f} s", p.scene.simplify.faces_before,
                  p.scene.simplify.faces_after, p.scene.simplify.seconds);
   SceneMesh& mesh = *p.scene.mesh;
+  p.phases.done("read and repair");
 
   // 2. Light sources.
   if (request.coefficients)
@@ -167,7 +168,9 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
   // setting the request gives overrides.
   SettingsRequest settings = request.settings;
   if (request.coefficients) settings.patch_scale = request.coefficients->options.patch_factor;
+  p.phases.done("light sources");
   p.applied = apply_settings(mesh, settings, p.refine, p.solve);
+  p.phases.done("settings");
   const double patch_size = p.applied.patch_size;
   // A closed room whose faces point outward: of the rays leaving the fronts, almost all
   // escape, and the few that meet something (a lamp facing the ceiling it hangs under)
@@ -195,6 +198,7 @@ PreparedScene prepare_scene(const SceneRequest& request, LoadedScene* loaded) {
                    p.outlines.seconds);
   }
   p.hierarchy = std::make_unique<ElementHierarchy>(mesh, refinement_for_patch_size(patch_size));
+  p.phases.done("patches");
   spdlog::info("{}: {} triangles, {} patches (patch size {:.4g}: {}), {}", request.path, p.patching.faces_before,
                p.hierarchy->patch_count(), patch_size, p.applied.patch_size_rule,
                p.solve.error_target > 0
@@ -222,7 +226,11 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
     s.solver->carry_coefficients(
         coefficient_channels(*s.channel_visibility, p.luminaires.front(), *c->indirect, *c->suns, c->options));
   }
+  p.phases.done("solver set-up");
   s.report = s.solver->run();
+  p.phases.add("shots of luminaires and the sun", s.report.luminaire_seconds);
+  p.phases.add("refinement for direct light", s.report.display_seconds);
+  p.phases.done("shots");
   if (p.solve.outline_patch_size > 0) {
     p.outlines = s.solver->outline_report();
     if (p.outlines.outlines > 0)
@@ -232,13 +240,19 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
                    p.outlines.seconds);
   }
   s.output = s.solver->output();
-  if (lit || !p.grids.empty() || !p.light_scenes.empty())
+  p.phases.done("values per vertex");
+  if (lit || !p.grids.empty() || !p.light_scenes.empty()) {
     s.lit = std::make_unique<LitScene>(lit_scene(*p.scene.mesh, s.output.split, s.output.radiosity, p.luminaires,
                                                  p.solve.emission_scale, p.photometric));
+    p.phases.done("lit scene");
+  }
   // Grids: illuminance in mid-air, gathered from the solution (radiosity/analysis/
   // grid.h). With light scenes, from the channelled solve.
   // Annual daylight's grids are its own: each point's coefficients (climate/).
-  if (s.lit && !p.request.coefficients) s.grids = gather_grids(*s.lit, p.grids);
+  if (s.lit && !p.request.coefficients) {
+    s.grids = gather_grids(*s.lit, p.grids);
+    if (!p.grids.empty()) p.phases.done("grids");
+  }
   return s;
 }
 

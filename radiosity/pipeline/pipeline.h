@@ -27,6 +27,7 @@
 #include "radiosity/analysis/lit_scene.h"
 #include "radiosity/climate/coefficient_solve.h"
 #include "radiosity/design/light_scenes.h"
+#include "radiosity/pipeline/phase_log.h"
 #include "radiosity/pipeline/scene_sections.h"
 #include "radiosity/solver/settings.h"
 #include "radiosity/solver/solver.h"
@@ -110,6 +111,9 @@ struct PreparedScene {
   PatchingReport patching;
   ShadowOutlineReport outlines;
   std::unique_ptr<ElementHierarchy> hierarchy;
+  // Each phase's time and memory: prepare_scene() and solve_scene() log theirs, a host
+  // adds what it does after (views, decimation, writing).
+  PhaseLog phases;
   std::shared_ptr<const Glazing> glazing;  // with coefficients: the windows the steering sky comes through
 };
 

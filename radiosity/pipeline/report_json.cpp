@@ -39,6 +39,13 @@ nlohmann::json solve_report_json(const PreparedScene& p, const SolvedScene& s, d
                           {"flips", outlines.flips},
                           {"seconds", outlines.seconds}};
   j["stopped_by"] = to_string(report.stopped_by);
+  nlohmann::json phases = nlohmann::json::array();
+  for (const PhaseTime& t : p.phases.phases())
+    phases.push_back({{"name", t.name},
+                      {"seconds", t.seconds},
+                      {"resident_mib", t.resident / 1048576.0},
+                      {"peak_mib", t.peak / 1048576.0}});
+  j["phases"] = phases;
   j["unshot_history"] = report.unshot_history;
   j["transfers_history"] = report.transfers_history;
   j["form_factor_sum_error"] = report.form_factor_sum_error;
