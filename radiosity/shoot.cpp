@@ -262,10 +262,11 @@ void Solver::shoot_element(ElementId q, const ShotRules& rules, const Rgb& shot,
     in.current[k] = patch.reflectance * shot * form_factor(q, k);
     in.cumulated[k] = value_[q][k] + (holds_shot ? Rgb() : in.current[k]);
   }
-  in.direct = patch.direct.luminance();
+  for (int k = 0; k < 3; ++k)  // (exact_direct.cpp; 0 where no direct sender lit it)
+    in.direct[k] = (patch.reflectance * receiver_direct(corner_receiver_[q][k])).luminance();
   if (rules.direct) {  // to the patches only, and into no element's values (exact_direct.cpp)
     out.terminals.push_back(q);
-    out.reach.push_back(element_reach(q));
+    out.reach.push_back(direct_reach(q));
     out.count(el);
     return;
   }
@@ -404,7 +405,10 @@ void Solver::update(std::uint32_t i, const Rgb& shot) {
     patches_[i].shot += shot;
   }
   // Who lit each patch is known once the last luminaire has shot (exact_direct.cpp).
-  if (is_luminaire(i) && next_luminaire_ == luminaires_.size()) build_direct_lists();
+  if (is_luminaire(i) && next_luminaire_ == luminaires_.size()) {
+    build_direct_lists();
+    direct_for_new_elements(0);  // every receiver so far: the oracle sees the direct light
+  }
   ++report_.iterations;
   report_.unshot_history.push_back(unshot_fraction());
   report_.transfers_history.push_back(report_.energy_transfers);

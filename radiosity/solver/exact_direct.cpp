@@ -47,6 +47,24 @@ constexpr double kGapWeight = 2.0 / 3;
 
 }  // namespace
 
+double Solver::direct_reach(ElementId q) const {
+  // The mean over kReachSide^2 points, one in the middle of each stratum of the patch,
+  // with rays: a table's shadow inside a patch whose corners are lit takes its share
+  // off, and the pool under a lamp is summed where it bends, not from the corners.
+  const Element& el = hierarchy_.element(q);
+  const std::array<Vec3d, 3> c{hierarchy_.position(el.corners[0]), hierarchy_.position(el.corners[1]),
+                               hierarchy_.position(el.corners[2])};
+  const Vec3d& n = hierarchy_.normal(q);
+  double sum = 0;
+  for (int i = 0; i < kReachSide; ++i)
+    for (int j = 0; j < kReachSide; ++j) {
+      const Vec3d x = point_on_triangle(c, (i + 0.5) / kReachSide, (j + 0.5) / kReachSide);
+      const std::uint64_t key = (std::uint64_t{5} << 33) + kReachSide * kReachSide * std::uint64_t{q} + i * kReachSide + j;
+      sum += luminaire_illuminance(x, n, sender_, mix(options_.seed ^ mix(key)), true, nullptr);
+    }
+  return el.area * sum / (kReachSide * kReachSide);
+}
+
 void Solver::note_direct(std::uint32_t patch, const Rgb& radiosity) {
   patches_[patch].direct += radiosity;
   lit_by_.emplace_back(patch, sender_ - static_cast<std::uint32_t>(patches_.size()));
@@ -168,12 +186,16 @@ Solver::DisplayError Solver::direct_display_error(ElementId e) const {
   // edge's midpoint the closed form times the ends' mean visible share against the ends'
   // mean, plus half the ends' difference where a shadow's edge may cross between them;
   // at the centroid likewise. No rays: a shadow is found by the corners' shares.
-  out.error = std::abs(open(centroid) * seen_mean - corners);
+  const double at_centroid = open(centroid) * seen_mean;
+  out.peak = std::max({corner[0], corner[1], corner[2], at_centroid});
+  out.error = std::abs(at_centroid - corners);
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     Vec3d mid = (at[k] + at[l]) * 0.5;
     mid += (centroid - mid) * kInside;
-    double error = std::abs(open(mid) * 0.5 * (seen[k] + seen[l]) - 0.5 * (corner[k] + corner[l]));
+    const double at_mid = open(mid) * 0.5 * (seen[k] + seen[l]);
+    out.peak = std::max(out.peak, at_mid);
+    double error = std::abs(at_mid - 0.5 * (corner[k] + corner[l]));
     if (!out.resolved && std::abs(seen[k] - seen[l]) > 1e-6) error += 0.5 * std::abs(corner[k] - corner[l]);
     out.error = std::max(out.error, error);
   }
@@ -237,16 +259,18 @@ void Solver::refine_for_display() {
       const DisplayError d = direct_display_error(e);
       display_gap_[e] = static_cast<float>(d.gap);
       if (!refines || patch.clustered || el.in_strip || (d.shadow && d.resolved)) return;
-      // Against the brightest corner's light: what the element shows there.
+      // As the push-down oracle measures a shot (oracle.h): against the direct light's
+      // own peak at the element, or the floor's share of all the light it shows.
       double bright = 0;
       const Rgb extra = patch.reflectance * ambient_now;
       for (int k = 0; k < 3; ++k)
         bright = std::max(bright, (value_[e][k] + extra + patch.reflectance * receiver_direct(corner_receiver_[e][k]))
                                       .luminance());
+      const double scale = std::max(d.peak, refine_.dynamic.pushdown_floor * bright);
       const bool deeper = d.shadow && !patch.detail;
       const int generations = 2 * ((patch.detail ? detail_levels : levels) + (deeper ? refine_.shadow_levels : 0));
       const bool can_split = el.generation < generations && el.area >= std::ldexp(patch_area_, 1 - generations);
-      split[i] = can_split && d.error > (patch.detail ? refine_.dynamic.pushdown : tolerance) * bright;
+      split[i] = can_split && d.error > (patch.detail ? refine_.dynamic.pushdown : tolerance) * scale;
     });
     const std::size_t first = hierarchy_.element_count();
     bool stopped = false;

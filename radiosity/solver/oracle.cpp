@@ -5,28 +5,31 @@
 namespace dynrad::rad {
 namespace {
 
-// (max - min) / (max + offset): `offset` is light the values leave out (OracleInputs::direct).
-double relative_spread(const std::array<Rgb, 3>& v, double offset = 0) {
-  const double a = v[0].luminance(), b = v[1].luminance(), c = v[2].luminance();
+// (max - min) / max of the corners' luminance plus `extra` at each (OracleInputs::direct).
+double relative_spread(const std::array<Rgb, 3>& v, const std::array<double, 3>& extra = {0, 0, 0}) {
+  const double a = v[0].luminance() + extra[0], b = v[1].luminance() + extra[1], c = v[2].luminance() + extra[2];
   const double hi = std::max({a, b, c}), lo = std::min({a, b, c});
-  return hi + offset > 0 ? (hi - lo) / (hi + offset) : 0.0;
+  return hi > 0 ? (hi - lo) / hi : 0.0;
 }
 
 double mean_luminance(const std::array<Rgb, 3>& v) {
   return (v[0].luminance() + v[1].luminance() + v[2].luminance()) / 3.0;
 }
 
+double direct_mean(const OracleInputs& in) { return (in.direct[0] + in.direct[1] + in.direct[2]) / 3.0; }
+
 }  // namespace
 
 double cumulated_gradient(const OracleInputs& in) { return relative_spread(in.cumulated, in.direct); }
 double current_gradient(const OracleInputs& in) { return relative_spread(in.current); }
 double current_ratio(const OracleInputs& in) {
-  const double cumulated = mean_luminance(in.cumulated) + in.direct;
+  const double cumulated = mean_luminance(in.cumulated) + direct_mean(in);
   return cumulated > 0 ? mean_luminance(in.current) / cumulated : 0.0;
 }
 double pushdown_gradient(const OracleInputs& in, double floor) {
-  const double hi = std::max({in.cumulated[0].luminance(), in.cumulated[1].luminance(), in.cumulated[2].luminance()});
-  const double scale = std::max(in.current_peak, floor * (hi + in.ambient + in.direct));
+  const double hi = std::max({in.cumulated[0].luminance() + in.direct[0], in.cumulated[1].luminance() + in.direct[1],
+                              in.cumulated[2].luminance() + in.direct[2]});
+  const double scale = std::max(in.current_peak, floor * (hi + in.ambient));
   return scale > 0 ? in.pushdown_error / scale : 0.0;
 }
 

@@ -71,11 +71,11 @@ struct OracleInputs {
   // The element's reflectance times the ambient radiosity (luminance), when the floor
   // uses it; 0 otherwise.
   double ambient = 0;
-  // Light the element has that its corners' B leaves out, as luminance: its patch's
-  // direct light where that is evaluated outside the hierarchy (RefineSettings::
-  // exact_direct). It counts in the element's brightness, the scale of the cumulated
-  // gradient, current/cumulated and the push-down floor.
-  double direct = 0;
+  // Light at the corners that B leaves out, as luminance: the direct light evaluated
+  // outside the hierarchy (RefineSettings::exact_direct). It counts in the element's
+  // shading and brightness: the cumulated gradient, current/cumulated and the push-down
+  // floor see B plus it.
+  std::array<double, 3> direct{0, 0, 0};
   // The element has children already: the push-down oracle then asks only whether
   // pushing this transfer down to them would be wrong (going on costs transfers, no
   // new elements), not whether the element's shading is uneven.

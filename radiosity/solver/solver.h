@@ -526,6 +526,11 @@ class Solver {
   bool is_direct_sender(std::uint32_t id) const {
     return refine_.exact_direct && is_luminaire(id) && luminaire(id).kind != Luminaire::Kind::sky;
   }
+  // In a direct sender's shot: what element q receives of it per unit of its colour
+  // (illuminance times area), by kReachSide^2 points on q with rays (account_transfers
+  // scales it as every shot's reach).
+  double direct_reach(ElementId q) const;
+  static constexpr int kReachSide = 4;
   // In a direct sender's shot: patch p takes `radiosity` (its mean, reflected) and
   // notes the sender among those that lit it.
   void note_direct(std::uint32_t patch, const Rgb& radiosity);
@@ -548,12 +553,16 @@ class Solver {
   DirectAt direct_at(const Vec3d& x, const Vec3d& n, const std::vector<std::uint32_t>& lights, std::uint64_t key) const;
   std::vector<DirectAt> receiver_direct_;  // per receiver, computed when wanted
   void compute_receiver_direct(std::vector<std::uint32_t> wanted);
+  // The direct light at the receivers of elements from `first` on, in lit patches (once
+  // the luminaires have shot): the oracle counts it in each element's shading.
+  void direct_for_new_elements(ElementId first);
   Rgb receiver_direct(std::uint32_t r) const;  // illuminance; 0 where not computed or unlit
   // Leaf e's direct light (luminance, reflected) against linear interpolation between its
   // corners (exact_direct.cpp).
   struct DisplayError {
     double error = 0;       // the push-down oracle's measure at its edge midpoints and centroid
     double gap = 0;         // that, or what rays at its centroid find, the larger
+    double peak = 0;        // the largest light at its corners, midpoints and centroid
     bool shadow = false;    // its corners see shares of the light that differ by more than a quarter
     bool resolved = false;  // small enough for a point source's shadow edge
   };

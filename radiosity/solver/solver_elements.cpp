@@ -134,6 +134,7 @@ void Solver::initialise_new_elements() {
     }
     gather_new_elements(initialised_);
     initialised_ = count;
+    direct_for_new_elements(first);
     return;
   }
   // In parallel. A new element's parent may be new too (a 1 -> 4 split bisects twice),
@@ -146,6 +147,7 @@ void Solver::initialise_new_elements() {
     register_receivers(first);
     initialise_values(first, count);
     initialised_ = count;
+    direct_for_new_elements(first);
     return;
   }
   // Storage for the new receivers first, so that registering moves nothing the values
@@ -162,6 +164,16 @@ void Solver::initialise_new_elements() {
   }
   registering.wait();
   initialised_ = count;
+  direct_for_new_elements(first);
+}
+
+void Solver::direct_for_new_elements(ElementId first) {
+  if (!direct_lists_built_ || lit_luminaires_.empty()) return;
+  std::vector<std::uint32_t> wanted;
+  for (ElementId e = first; e < hierarchy_.element_count(); ++e)
+    if (directly_lit(hierarchy_.element(e).patch))
+      for (const std::uint32_t r : corner_receiver_[e]) wanted.push_back(r);
+  compute_receiver_direct(std::move(wanted));
 }
 
 void Solver::initialise_values(ElementId first, std::size_t count) {
