@@ -15,7 +15,11 @@ void PhaseLog::done(std::string name) {
 }
 
 void PhaseLog::add(std::string name, double seconds) {
-  phases_.push_back({std::move(name), seconds, resident_memory(), peak_resident_memory()});
+  add(std::move(name), seconds, resident_memory(), peak_resident_memory());
+}
+
+void PhaseLog::add(std::string name, double seconds, std::size_t resident, std::size_t peak) {
+  phases_.push_back({std::move(name), seconds, resident, peak});
   taken_ += seconds;
 }
 

@@ -23,6 +23,8 @@ class PhaseLog {
   // A phase whose time is known otherwise (a part of the one that ends next is then
   // counted once: it is taken off that one).
   void add(std::string name, double seconds);
+  // The same, with the memory when it ended (bytes), measured by whoever timed it.
+  void add(std::string name, double seconds, std::size_t resident, std::size_t peak);
   const std::vector<PhaseTime>& phases() const { return phases_; }
 
  private:

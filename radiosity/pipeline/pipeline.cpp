@@ -228,9 +228,11 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
   }
   p.phases.done("solver set-up");
   s.report = s.solver->run();
-  p.phases.add("shots of luminaires and the sun", s.report.luminaire_seconds);
-  p.phases.add("refinement for direct light", s.report.display_seconds);
-  p.phases.done("shots");
+  // (in the order they ran; the last one ends now and takes the remaining seconds)
+  const SolveReport::Part& lum = s.report.luminaire_shots;
+  if (lum.seconds > 0) p.phases.add("shots of luminaires and the sun", lum.seconds, lum.resident, lum.peak);
+  p.phases.add("shots", s.report.later_shots.seconds, s.report.later_shots.resident, s.report.later_shots.peak);
+  p.phases.done("refinement for direct light and the estimate");
   if (p.solve.outline_patch_size > 0) {
     p.outlines = s.solver->outline_report();
     if (p.outlines.outlines > 0)
@@ -240,6 +242,9 @@ SolvedScene solve_scene(PreparedScene& p, bool lit) {
                    p.outlines.seconds);
   }
   s.output = s.solver->output();
+  // (annual daylight reads the solver's channels and refines nothing more; a lit scene
+  // and the written mesh need only the output from here)
+  if (!p.request.coefficients) s.solver->release_elements();
   p.phases.done("values per vertex");
   if (lit || !p.grids.empty() || !p.light_scenes.empty()) {
     s.lit = std::make_unique<LitScene>(lit_scene(*p.scene.mesh, s.output.split, s.output.radiosity, p.luminaires,

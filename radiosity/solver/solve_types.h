@@ -208,9 +208,14 @@ struct SolveReport {
   // budget") and at which shot.
   std::string refinement_stopped;
   std::size_t refinement_stopped_at = 0;
-  // Of `seconds`: the luminaires' and the sun's shots, and the refinement for display
-  // after the shots (RefineSettings::exact_direct).
-  double luminaire_seconds = 0, display_seconds = 0;
+  // Parts of `seconds`, each with the process's resident and peak memory (bytes) when it
+  // ended: the luminaires' (and the sun's) shots, the shots after them, the refinement
+  // for display after the shots (RefineSettings::exact_direct) and the estimate.
+  struct Part {
+    double seconds = 0;
+    std::size_t resident = 0, peak = 0;
+  };
+  Part luminaire_shots, later_shots, display;
   std::size_t peak_resident_memory = 0;  // bytes: the process's peak (VmHWM) when the solve ended, where known
   std::uint64_t culled_receivers = 0;    // patches skipped by a shot, summed over shots (see SolveOptions::cull)
   std::uint64_t negligible_receivers = 0;  // of those, skipped for a negligible bound

@@ -219,17 +219,18 @@ SolveReport Solver::run() {
       break;
     }
     if (!shoot_once()) break;
-    if (next_luminaire_ == luminaires_.size() && report_.luminaire_seconds == 0 && !luminaires_.empty())
-      report_.luminaire_seconds = elapsed();
+    if (next_luminaire_ == luminaires_.size() && report_.luminaire_shots.seconds == 0 && !luminaires_.empty())
+      report_.luminaire_shots = {elapsed(), resident_memory(), peak_resident_memory()};
     if (options_.on_shot) options_.on_shot(report_.iterations, unshot_fraction());
   }
   // The display's refinement for direct light (exact_direct.cpp), then the estimate
   // with what it left.
   const double shots_done = elapsed();
+  report_.later_shots = {shots_done - report_.luminaire_shots.seconds, resident_memory(), peak_resident_memory()};
   refine_for_display();
-  report_.seconds = elapsed();
-  report_.display_seconds = report_.seconds - shots_done;
   report_.estimated_error = estimate_error();
+  report_.seconds = elapsed();
+  report_.display = {report_.seconds - shots_done, resident_memory(), peak_resident_memory()};
   report_.unshot_fraction = unshot_fraction();
   report_.elements = hierarchy_.element_count();
   report_.receivers = scene_.vertex_count();

@@ -63,6 +63,13 @@ class Solver {
   using Output = SolverOutput;  // solver_output.h
   Output output() { return output(options_.ambient_display); }
   Output output(bool ambient_display);  // with or without the ambient term, whatever the options
+  // Frees what only the shots and output() use, per element and per receiver (the
+  // values, the push-down, the form factors, the receivers, their direct light, the
+  // ray scene), keeping the patches, the luminaires, the report and the coefficient
+  // channels. For a host that has taken output() and goes on to the lit scene and
+  // the written mesh (the pipeline): on one office storey that is about 1 GB of its
+  // peak. Nothing may shoot, estimate or output after it.
+  void release_elements();
 
   // The estimated mean relative error of what output() writes now: per leaf element,
   // area-weighted, over surfaces that reflect, relative to their mean radiosity.

@@ -202,4 +202,23 @@ Solver::Output Solver::output(bool ambient_display) {
   return out;
 }
 
+void Solver::release_elements() {
+  value_ = {};
+  pending_ = {};
+  gathered_in_ = {};
+  corner_receiver_ = {};
+  form_factor_ = {};
+  form_factor_shot_ = {};
+  std::vector<Receiver>().swap(receivers_);
+  receiver_id_ = {};
+  std::vector<DirectAt>().swap(receiver_direct_);
+  std::vector<float>().swap(display_gap_);
+  std::vector<float>().swap(direct_gap_);
+  std::vector<float>().swap(receiver_seen_);
+  held_.clear();
+  std::vector<WalkChunk>().swap(walk_chunks_);
+  visibility_.reset();
+  initialised_ = 0;
+}
+
 }  // namespace dynrad::rad
