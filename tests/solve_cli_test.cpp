@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 
 namespace dynrad {
@@ -54,6 +56,56 @@ TEST(SolveCommand, WritesLitMeshAndReport) {
   ASSERT_FALSE(green.empty());
   EXPECT_GT(*std::max_element(green.begin(), green.end()), 0.0f);
   EXPECT_NE(r.output.find("stopped by iterations"), std::string::npos) << r.output;
+}
+
+// The report's phases: every phase a lamp-lit solve with a grid passes through, in the
+// order they ran, their seconds adding up to no more than the run's wall time (each is
+// a slice of it, none counted twice) and to most of the solve's own seconds, each with
+// the process's memory when it ended (the peak never below what was resident then,
+// and never falling).
+TEST(SolveCommand, ReportsWhereItsTimeAndMemoryWent) {
+  test::TempDir dir;
+  dir.write("room.obj",
+            "mtllib room.mtl\nusemtl wall\n"
+            "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.8\nv 4 0 2.8\nv 4 3 2.8\nv 0 3 2.8\n"
+            "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
+  dir.write("room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\n");
+  const std::string scene = dir.write("scene.json", R"({
+    "meshes": [{"file": "room.obj"}],
+    "luminaires": [{"type": "point", "intensity": 300, "position": [2, 1.5, 2.7]}],
+    "grids": [{"name": "desk", "rectangle": [0.5, 0.5, 3.5, 2.5], "height": 0.8}]})");
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = test::run_dynrad("solve -q '" + scene + "' -o '" + dir.path("lit.ply") + "' --report '" +
+                                  dir.path("report.json") + "'");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(test::read_text(dir.path("report.json")));
+  ASSERT_TRUE(j.contains("phases"));
+  std::vector<std::string> names;
+  double sum = 0, solver = 0, peak = 0;
+  for (const auto& phase : j["phases"]) {
+    names.push_back(phase["name"].get<std::string>());
+    const double seconds = phase["seconds"].get<double>();
+    EXPECT_GE(seconds, 0.0) << names.back();
+    sum += seconds;
+    if (names.back().find("shots") != std::string::npos || names.back().find("refinement") == 0) solver += seconds;
+    const double resident = phase["resident_mib"].get<double>(), now_peak = phase["peak_mib"].get<double>();
+    EXPECT_GT(resident, 0.0) << names.back();
+    EXPECT_GE(now_peak, resident) << names.back();
+    EXPECT_GE(now_peak, peak) << names.back();
+    peak = now_peak;
+  }
+  const std::vector<std::string> in_order = {"read and repair", "solver set-up", "shots of luminaires and the sun",
+                                             "shots", "refinement for direct light and the estimate",
+                                             "values per vertex", "grids", "writing the lit mesh"};
+  auto at = names.begin();
+  for (const std::string& name : in_order) {
+    at = std::find(at, names.end(), name);
+    EXPECT_NE(at, names.end()) << name << " missing or out of order";
+  }
+  EXPECT_LE(sum, wall);
+  // The solver's three phases are the solve's seconds, measured by the solver itself.
+  EXPECT_NEAR(solver, j["seconds"].get<double>(), 0.05 * j["seconds"].get<double>() + 0.01);
 }
 
 // --flat-senders reaches the solver: the report says so, and the light differs (the
