@@ -14,7 +14,14 @@
 //
 // Last line: "ratio: X", the largest building's wall seconds over the smallest's.
 //
+// With --lamps L1,L2,...: one storey only, with L point luminaires per office of 6000/L
+// lm each (make_office.py --lamps; 2 is the usual storey), the same light in every run:
+// how a solve grows with the number of luminaires alone (goal: twice the luminaires, at
+// most 1.3 times the time). Last line: "ratio: X", the most luminaires' wall seconds
+// over the fewest's.
+//
 // Usage: bench_buildings [storeys (1,2,4,8)] [dynrad solve options...]
+//        bench_buildings --lamps L1,L2,... [dynrad solve options...]
 #include "bench/child.h"
 
 #include <nlohmann/json.hpp>
@@ -122,17 +129,74 @@ void compare_offices(const std::string& name) {
 
 }  // namespace
 
+std::vector<int> numbers(const std::string& list) {
+  std::vector<int> out;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(std::stoi(item));
+  return out;
+}
+
+// The generated office (make_office.py OUT --storeys N [--lamps L]), solved; returns
+// its run with the input triangles the script reported.
+Result office(const std::string& name, int storeys, int lamps, const std::vector<std::string>& extra) {
+  const fs::path prefix = kWork / name;
+  const ChildRun made =
+      run_or_exit({"python3", DYNRAD_SAMPLES_DIR "/make_office.py", prefix.string(), "--storeys",
+                   std::to_string(storeys), "--lamps", std::to_string(lamps)},
+                  (kWork / (name + "_make.log")).string());
+  std::smatch m;
+  static const std::regex count(R"((\d+) triangles)");
+  const double triangles = std::regex_search(made.output, m, count) ? std::stod(m[1]) : 0;
+  return solve(name, prefix.string() + ".json", triangles, extra);
+}
+
+void print_phases(const Result& r) {
+  if (!r.report.contains("phases")) return;
+  std::printf("\n%s, by phase:\n\n| phase | seconds | resident MiB at its end | peak MiB so far |\n|---|---|---|---|\n",
+              r.name.c_str());
+  for (const nlohmann::json& p : r.report["phases"])
+    std::printf("| %s | %.1f | %.0f | %.0f |\n", p["name"].get<std::string>().c_str(), p["seconds"].get<double>(),
+                p["resident_mib"].get<double>(), p["peak_mib"].get<double>());
+}
+
+// One storey with L luminaires per office for each L given, the same light in all.
+int luminaires(const std::vector<int>& lamps, const std::vector<std::string>& extra) {
+  std::printf("bench_buildings: one office storey with");
+  for (int l : lamps) std::printf(" %d", 18 * l);
+  std::printf(" point luminaires (324,000 lm in all); dynrad solve options:");
+  for (const std::string& e : extra) std::printf(" %s", e.c_str());
+  std::printf("%s\n", extra.empty() ? " none" : "");
+  std::vector<Result> runs;
+  for (int l : lamps) runs.push_back(office("office_1_lamps_" + std::to_string(l), 1, l, extra));
+  std::printf("\n| luminaires | shots | elements | estimated error (stopped by) | wall s | peak MiB | wall s over "
+              "the fewest's |\n|---|---|---|---|---|---|---|\n");
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const nlohmann::json& j = runs[k].report;
+    std::printf("| %d | %zu | %zu | %.2f%% (%s) | %.1f | %.0f | %.2f |\n", 18 * lamps[k],
+                j["iterations"].get<std::size_t>(), j["elements"].get<std::size_t>(),
+                100 * j["estimated_error"]["total"].get<double>(), j["stopped_by"].get<std::string>().c_str(),
+                runs[k].seconds, runs[k].peak_mib, runs[k].seconds / runs.front().seconds);
+  }
+  for (const Result& r : runs) print_phases(r);
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (lamps[k] == 2) compare_offices(runs[k].name);
+  std::printf("\nratio: %.3f\n", runs.back().seconds / runs.front().seconds);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   std::vector<int> storeys = {1, 2, 4, 8};
   std::vector<std::string> extra;
+  fs::create_directories(kWork);
+  if (argc > 2 && std::string(argv[1]) == "--lamps") {
+    for (int i = 3; i < argc; ++i) extra.push_back(argv[i]);
+    return luminaires(numbers(argv[2]), extra);
+  }
   if (argc > 1) {
-    storeys.clear();
-    std::stringstream list(argv[1]);
-    std::string item;
-    while (std::getline(list, item, ',')) storeys.push_back(std::stoi(item));
+    storeys = numbers(argv[1]);
     for (int i = 2; i < argc; ++i) extra.push_back(argv[i]);
   }
-  fs::create_directories(kWork);
   std::printf("bench_buildings: office buildings of");
   for (int n : storeys) std::printf(" %d", n);
   std::printf(" storeys and the storey sample; dynrad solve options:");
@@ -140,17 +204,7 @@ int main(int argc, char** argv) {
   std::printf("%s\n", extra.empty() ? " none" : "");
 
   std::vector<Result> offices;
-  for (int n : storeys) {
-    const std::string name = "office_" + std::to_string(n);
-    const fs::path prefix = kWork / name;
-    const ChildRun made = run_or_exit({"python3", DYNRAD_SAMPLES_DIR "/make_office.py", prefix.string(), "--storeys",
-                                       std::to_string(n)},
-                                      (kWork / (name + "_make.log")).string());
-    std::smatch m;
-    static const std::regex count(R"((\d+) triangles)");
-    const double triangles = std::regex_search(made.output, m, count) ? std::stod(m[1]) : 0;
-    offices.push_back(solve(name, prefix.string() + ".json", triangles, extra));
-  }
+  for (int n : storeys) offices.push_back(office("office_" + std::to_string(n), n, 2, extra));
   const Result storey = solve("storey", DYNRAD_SAMPLES_DIR "/storey_luminaires.json", 848, extra);
 
   std::printf("\n| model | input triangles | patches | groups, clusters | shots | elements | estimated error "
@@ -166,14 +220,8 @@ int main(int argc, char** argv) {
   for (const Result& r : offices) row(r);
   row(storey);
   // Where each run's time and memory went (the report's phases).
-  for (const Result* r : std::vector<const Result*>{offices.empty() ? &storey : &offices.front(), &storey}) {
-    if (!r->report.contains("phases")) continue;
-    std::printf("\n%s, by phase:\n\n| phase | seconds | resident MiB at its end | peak MiB so far |\n|---|---|---|---|\n",
-                r->name.c_str());
-    for (const nlohmann::json& p : r->report["phases"])
-      std::printf("| %s | %.1f | %.0f | %.0f |\n", p["name"].get<std::string>().c_str(), p["seconds"].get<double>(),
-                  p["resident_mib"].get<double>(), p["peak_mib"].get<double>());
-  }
+  if (!offices.empty()) print_phases(offices.front());
+  print_phases(storey);
   // One storey against its path-traced reference (tests/data/office_storey_reference.txt):
   // each office's Eavg.
   for (std::size_t k = 0; k < storeys.size(); ++k)

@@ -3,7 +3,7 @@
 exported (IFC and the like): every element one or more closed, triangulated solids, the
 solids overlapping where elements meet, nothing imprinted on anything else.
 
-    samples/make_office.py OUT_PREFIX --storeys N [--rooms NX NY] [--seed S]
+    samples/make_office.py OUT_PREFIX --storeys N [--rooms NX NY] [--seed S] [--lamps L]
 
 Writes OUT_PREFIX.obj, OUT_PREFIX.mtl and OUT_PREFIX.json (a dynrad scene: the mesh,
 point luminaires and one work-plane grid per office). Standard library only.
@@ -51,7 +51,8 @@ Sizes with the default 6 x 3 offices (30.3 x 12.3 m outside), seed 1:
 (every face is written as a triangle; measured with this script.)
 
 The scene JSON has two point luminaires of 3000 lm per office, 0.2 m under the ceiling
-("s1_r3_a" is storey 1, office 3, the western one), and a grid per office at 0.8 m above
+("s1_r3_a" is storey 1, office 3, the western one; --lamps L hangs L of 6000/L lm
+instead, for how a solve grows with the luminaires at the same light), and a grid per office at 0.8 m above
 its floor with a 0.5 m border ("s1_r3").
 """
 import argparse
@@ -468,7 +469,21 @@ def skirting(obj, f, length, cuts, height):
 
 # --- the building ------------------------------------------------------------------------
 
-def build(nx, ny, storeys, seed):
+def lamp_places(n):
+    """Where an office's n lamps hang, as fractions of its width and depth: a row along
+    its width for up to 3 lamps, else two rows (0.3 and 0.7 of the depth); each row's
+    lamps spread evenly over 0.3 to 0.7 of the width (one lamp: the middle)."""
+    rows = 1 if n <= 3 else 2
+    places = []
+    for r in range(rows):
+        count = n // rows + (1 if r < n % rows else 0)
+        v = 0.5 if rows == 1 else 0.3 + 0.4 * r
+        for i in range(count):
+            places.append((0.5 if count == 1 else 0.3 + 0.4 * i / (count - 1), v))
+    return places
+
+
+def build(nx, ny, storeys, seed, lamps=2):
     obj = Obj()
     rng = random.Random(seed)
     X, Y = nx * ROOM_X, ny * ROOM_Y
@@ -590,9 +605,11 @@ def build(nx, ny, storeys, seed):
                     plant(obj, F.moved(W - 0.3, D - 0.3, 0), rng)
 
                 top = z + CLEAR - 0.2
-                for label, u in (("a", 0.3), ("b", 0.7)):
-                    luminaires.append({"type": "point", "lumens": 3000, "name": f"{room}_{label}",
-                                       "position": [round(x0 + u * W, 4), round(y0 + D / 2, 4), round(top, 4)]})
+                lumens = 6000 // lamps if 6000 % lamps == 0 else round(6000 / lamps, 3)
+                for k, (u, v) in enumerate(lamp_places(lamps)):
+                    luminaires.append({"type": "point", "lumens": lumens,
+                                       "name": f"{room}_{chr(ord('a') + k)}",
+                                       "position": [round(x0 + u * W, 4), round(y0 + v * D, 4), round(top, 4)]})
                 grids.append({"name": room, "rectangle": [round(c, 4) for c in (x0, y0, x1, y1)],
                               "height": round(z + 0.8, 4), "border": 0.5})
     return obj, luminaires, grids
@@ -604,11 +621,12 @@ def main():
     parser.add_argument("--storeys", type=int, required=True)
     parser.add_argument("--rooms", nargs=2, type=int, default=[6, 3], metavar=("NX", "NY"))
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--lamps", type=int, default=2, help="point luminaires per office, 6000 lm in all (default 2)")
     args = parser.parse_args()
     nx, ny = args.rooms
-    if args.storeys < 1 or nx < 1 or ny < 1:
-        parser.error("--storeys and --rooms must be at least 1")
-    obj, luminaires, grids = build(nx, ny, args.storeys, args.seed)
+    if args.storeys < 1 or nx < 1 or ny < 1 or not 1 <= args.lamps <= 26:
+        parser.error("--storeys and --rooms must be at least 1, --lamps 1 to 26")
+    obj, luminaires, grids = build(nx, ny, args.storeys, args.seed, args.lamps)
 
     base = args.out[:-4] if args.out.endswith(".obj") else args.out
     name = os.path.basename(base)

@@ -65,10 +65,7 @@ TEST(SolveCommand, WritesLitMeshAndReport) {
 // and never falling).
 TEST(SolveCommand, ReportsWhereItsTimeAndMemoryWent) {
   test::TempDir dir;
-  dir.write("room.obj",
-            "mtllib room.mtl\nusemtl wall\n"
-            "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.8\nv 4 0 2.8\nv 4 3 2.8\nv 0 3 2.8\n"
-            "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
+  dir.write("room.obj", test::box_room_obj(4, 3, 2.8));
   dir.write("room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\n");
   const std::string scene = dir.write("scene.json", R"({
     "meshes": [{"file": "room.obj"}],

@@ -167,6 +167,14 @@ static double corner_factor(double a, double b, double h) {
          (2 * M_PI);
 }
 
+std::string box_room_obj(double w, double d, double h) {
+  std::ostringstream obj;
+  obj << "mtllib room.mtl\nusemtl wall\n";
+  for (double z : {0.0, h}) obj << "v 0 0 " << z << "\nv " << w << " 0 " << z << "\nv " << w << ' ' << d << ' ' << z << "\nv 0 " << d << ' ' << z << '\n';
+  obj << "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n";
+  return obj.str();
+}
+
 double parallel_rectangle(double px, double py, double x0, double y0, double x1, double y1, double h) {
   auto signed_corner = [&](double x, double y) {
     const double a = x - px, b = y - py;

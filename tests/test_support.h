@@ -50,6 +50,10 @@ struct Picture {
 };
 Picture read_png(const std::string& path);
 
+// A closed box room, x in [0, w], y in [0, d], z in [0, h], its faces towards the inside,
+// as OBJ text with material `wall` from room.mtl.
+std::string box_room_obj(double w, double d, double h);
+
 std::string sample(const std::string& name);
 std::string read_text(const std::string& path);
 bool file_exists(const std::string& path);

@@ -177,6 +177,9 @@ SolveReport Solver::run() {
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   report_.stopped_by = StopReason::converged;
   report_.error_target = options_.error_target;
+  // (a run before may have ended with the display's refinement, which drops the
+  // push-down once all of it is delivered: refine_for_display)
+  pending_.resize(hierarchy_.element_count());
   // The error estimate costs a pass over the elements: it is taken when unshot power
   // has fallen by a fifth since the last look, or every 64 shots (at every tenth, its
   // 44 looks were about 10% of the 1990 room's solve), or, in a long solve, every 32nd

@@ -124,14 +124,12 @@ void Solver::initialise_new_elements() {
   if (count == first) return;
   // The new entries are written below, in parallel (their memory is touched first there).
   value_.resize_for_overwrite(count);
-  pending_.resize_for_overwrite(count);
+  // (none in the display's refinement, which follows the last shot: refine_for_display)
+  if (!refining_for_display_) pending_.resize(count);
   gathered_in_.resize_for_overwrite(count);
   if (refine_.method == Method::adaptive || refine_.new_elements == RefineSettings::NewElements::gather) {
     register_receivers(first);
-    for (ElementId e = first; e < count; ++e) {
-      pending_[e] = {};
-      gathered_in_[e] = 0;
-    }
+    for (ElementId e = first; e < count; ++e) gathered_in_[e] = 0;
     gather_new_elements(initialised_);
     initialised_ = count;
     direct_for_new_elements(first);
@@ -179,7 +177,6 @@ void Solver::direct_for_new_elements(ElementId first) {
 void Solver::initialise_values(ElementId first, std::size_t count) {
   parallel_for_index(count - first, 1024, [&](std::size_t n) {
     const ElementId e = first + static_cast<ElementId>(n);
-    pending_[e] = {};
     gathered_in_[e] = 0;
     const Element& el = hierarchy_.element(e);
     ElementId source = el.parent;
@@ -346,7 +343,7 @@ void Solver::push_down(ElementId q, const std::array<Rgb, 6>& delta) {
 
 void Solver::flush(ElementId q) {
   const Element& el = hierarchy_.element(q);
-  if (el.is_leaf()) return;
+  if (el.is_leaf() || q >= pending_.size()) return;  // (none held: refine_for_display)
   std::array<Rgb, 6>& pending = pending_[q];
   bool zero = true;
   for (const Rgb& v : pending) zero = zero && v.is_zero();
