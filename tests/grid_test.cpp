@@ -182,13 +182,8 @@ TEST(Grid, SpacingRuleCellCentresAndBorder) {
 // issue's key names, CSV per point.
 TEST(Grid, SceneFileGridsAreSolvedAndWritten) {
   test::TempDir dir;
-  dir.write("room.obj", test::box_room_obj(4, 3, 2.8));
-  dir.write("room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\n");
-  const std::string scene = dir.write("scene.json", R"({
-    "meshes": [{"file": "room.obj"}],
-    "luminaires": [{"type": "point", "intensity": 300, "position": [2, 1.5, 2.7]}],
-    "grids": [{"name": "office", "polygon": [[0, 0], [4, 0], [4, 3], [0, 3]], "height": 0.8, "spacing": "auto",
-               "border": 0.5}]})");
+  const std::string scene = test::write_lamp_room(dir, R"([{"name": "office", "polygon": [[0, 0], [4, 0], [4, 3], [0, 3]],
+    "height": 0.8, "spacing": "auto", "border": 0.5}])");
   const auto r = test::run_dynrad("solve -q '" + scene + "' -o '" + dir.path("lit.ply") + "' --report '" +
                                   dir.path("report.json") + "'");
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -65,12 +65,8 @@ TEST(SolveCommand, WritesLitMeshAndReport) {
 // and never falling).
 TEST(SolveCommand, ReportsWhereItsTimeAndMemoryWent) {
   test::TempDir dir;
-  dir.write("room.obj", test::box_room_obj(4, 3, 2.8));
-  dir.write("room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\n");
-  const std::string scene = dir.write("scene.json", R"({
-    "meshes": [{"file": "room.obj"}],
-    "luminaires": [{"type": "point", "intensity": 300, "position": [2, 1.5, 2.7]}],
-    "grids": [{"name": "desk", "rectangle": [0.5, 0.5, 3.5, 2.5], "height": 0.8}]})");
+  const std::string scene =
+      test::write_lamp_room(dir, R"([{"name": "desk", "rectangle": [0.5, 0.5, 3.5, 2.5], "height": 0.8}])");
   const auto start = std::chrono::steady_clock::now();
   const auto r = test::run_dynrad("solve -q '" + scene + "' -o '" + dir.path("lit.ply") + "' --report '" +
                                   dir.path("report.json") + "'");

@@ -175,6 +175,14 @@ std::string box_room_obj(double w, double d, double h) {
   return obj.str();
 }
 
+std::string write_lamp_room(const TempDir& dir, const std::string& grids) {
+  dir.write("room.obj", box_room_obj(4, 3, 2.8));
+  dir.write("room.mtl", "newmtl wall\nKd 0.6 0.6 0.6\n");
+  return dir.write("scene.json", R"({"meshes": [{"file": "room.obj"}],
+    "luminaires": [{"type": "point", "intensity": 300, "position": [2, 1.5, 2.7]}],
+    "grids": )" + grids + "}");
+}
+
 double parallel_rectangle(double px, double py, double x0, double y0, double x1, double y1, double h) {
   auto signed_corner = [&](double x, double y) {
     const double a = x - px, b = y - py;

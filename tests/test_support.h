@@ -53,6 +53,10 @@ Picture read_png(const std::string& path);
 // A closed box room, x in [0, w], y in [0, d], z in [0, h], its faces towards the inside,
 // as OBJ text with material `wall` from room.mtl.
 std::string box_room_obj(double w, double d, double h);
+// Writes a scene to `dir`: that room 4 x 3 x 2.8 m of reflectance 0.6 with a 300 cd
+// point lamp at (2, 1.5, 2.7), and `grids` (a JSON array) as its "grids"; returns the
+// scene file's path.
+std::string write_lamp_room(const TempDir& dir, const std::string& grids);
 
 std::string sample(const std::string& name);
 std::string read_text(const std::string& path);

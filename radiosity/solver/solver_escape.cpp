@@ -100,10 +100,7 @@ std::array<double, 2> Solver::escape_counts(std::uint64_t seed, const EscapeOrig
         const double u1 = (i + rng.uniform()) / side, u2 = (j + rng.uniform()) / side;
         Vec3d from, n;
         origin(rng.state, from, n);
-        const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
-        const Vec3d b = OpenMesh::cross(n, t);
-        const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-        const Vec3d dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+        const Vec3d dir = cosine_direction(n, u1, u2);
         const auto hit = visibility_->trace(from, n, dir);
         escaped += hit == Visibility::Hit::nothing;
         back += hit == Visibility::Hit::back;

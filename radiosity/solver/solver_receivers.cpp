@@ -155,11 +155,7 @@ void Solver::sender_ray_hits(std::vector<std::uint32_t>& positions) const {
                                          : group_sender_point(rng.uniform(), a, b);
           n = patches_[sender_].normal;
         }
-        // Cosine-weighted about n.
-        const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
-        const Vec3d b = OpenMesh::cross(n, t);
-        const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-        dir = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+        dir = cosine_direction(n, u1, u2);
         from += n * offset;
       }
       const Visibility::Intersection hit = visibility_->intersect(from, dir);

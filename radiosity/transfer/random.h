@@ -64,4 +64,13 @@ inline Vec3d point_on_triangle(const std::array<Vec3d, 3>& c, double u, double v
   return p + (centroid - p) * 1e-2;
 }
 
+// A direction about the unit normal n, cosine-weighted for (u1, u2) uniform in the unit
+// square (Malley's method: a uniform point on the disc lifted onto the hemisphere).
+inline Vec3d cosine_direction(const Vec3d& n, double u1, double u2) {
+  const Vec3d t = OpenMesh::cross(std::abs(n[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0), n).normalized();
+  const Vec3d b = OpenMesh::cross(n, t);
+  const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
+  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
+}
+
 }  // namespace dynrad::rad
